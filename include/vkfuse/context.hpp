@@ -1,0 +1,56 @@
+// vkfuse/context.hpp - a Vulkan device, opened once and shared by plans.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vkfuse {
+
+struct DeviceInfo {
+    int index = 0;            // position in the loader's enumeration
+    std::string name;         // "llvmpipe (LLVM 15.0.6, 256 bits)", "NVIDIA H100 ..."
+    std::string driver;       // driver name and info
+    std::string type;         // "cpu", "integrated", "discrete", "virtual", "other"
+    std::string api_version;  // "1.3.230"
+    bool usable = false;      // meets vkfuse's needs (Vulkan 1.2, buffer device address)
+    std::string why_not;      // when !usable, the missing capability
+};
+
+struct ContextOptions {
+    int device_index = -1;    // -1: the best usable device (discrete > integrated > cpu)
+    bool validation = false;  // enable VK_LAYER_KHRONOS_validation (error if absent)
+    // Receives every validation-layer message (errors and warnings) when
+    // validation is on. Tests fail on any message of type VALIDATION.
+    std::function<void(const std::string&)> on_validation_message;
+};
+
+// Owns a VkInstance, one VkDevice and its compute queue. Cheap to move, not
+// copyable; several Contexts may live in one process. Throws Error(Device)
+// when no loader, no device, or no usable device exists.
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(Context&&) noexcept;
+    Context& operator=(Context&&) noexcept;
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const DeviceInfo& device() const;
+    // Number of validation messages seen so far (0 unless validation is on).
+    std::uint64_t validation_message_count() const;
+
+    struct Impl;
+    Impl& impl() { return *impl_; }
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// Lists the Vulkan devices without opening one. Throws Error(Device) if the
+// loader is missing; returns an empty list if it finds no device.
+std::vector<DeviceInfo> list_devices();
+
+}  // namespace vkfuse

@@ -1,0 +1,70 @@
+// vkfuse/plan.hpp - the GPU hot path: plan once, run every sensor cycle.
+#pragma once
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vkfuse/context.hpp"
+#include "vkfuse/fusion.hpp"
+#include "vkfuse/image.hpp"
+#include "vkfuse/metrics.hpp"
+
+namespace vkfuse {
+
+struct PlanConfig {
+    FusionSpec fusion;
+    int height = 0;
+    int width = 0;
+    int channels = 3;       // 1 or 3
+    int frames = 2;         // K: frames fused per sensor per cycle
+    int sensors = 1;        // S: sensors served by one submit
+    PixelType input = PixelType::F32;
+    bool want_fused = true;     // read back the fused image of every sensor
+    bool want_metrics = true;   // compute sharpness and contrast per sensor
+    bool background_diff = false;  // also the difference with each sensor's background
+    bool profile = false;       // per-kernel GPU timestamps (Plan::profile)
+};
+
+// Time one kernel (or a group of dispatches) took on the device in the last run.
+struct KernelTime {
+    std::string name;
+    double ms = 0;
+};
+
+// Everything for one (method, shape, K, S, metrics) is created here once:
+// pipelines, device buffers and one command buffer recorded at construction.
+// run() copies the frames into the upload buffer, submits that command buffer
+// once, waits, and exposes what was asked for. Not thread-safe; one Plan per
+// thread. Throws Error on invalid configuration or device failure.
+class Plan {
+public:
+    Plan(Context& context, const PlanConfig& config);
+    ~Plan();
+    Plan(Plan&&) noexcept;
+    Plan& operator=(Plan&&) noexcept;
+    Plan(const Plan&) = delete;
+    Plan& operator=(const Plan&) = delete;
+
+    const PlanConfig& config() const;
+
+    // Background frame of one sensor (shape height x width x channels, type
+    // config().input). Needed before run() when background_diff is set.
+    void set_background(int sensor, const FrameView& background);
+
+    // frames: sensors x frames views, sensor-major (sensor s, frame k at
+    // s * frames + k), each height x width x channels of type config().input.
+    void run(std::span<const FrameView> frames);
+
+    // Results of the last run().
+    const Image& fused(int sensor) const;  // requires want_fused
+    Metrics metrics(int sensor) const;     // requires want_metrics
+    std::vector<KernelTime> profile() const;  // requires profile
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vkfuse
