@@ -1,0 +1,20 @@
+// Shared helpers for the test executables.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "vkfuse/image.hpp"
+
+namespace vkfuse::test {
+
+// Deterministic pseudo-random image, values float32-representable in [0, 1].
+ImageD random_image(int height, int width, int channels, std::uint32_t seed);
+// A smooth image with edges and texture (closer to a tactile frame than noise).
+ImageD structured_image(int height, int width, int channels, std::uint32_t seed);
+// Largest |a - b| over all samples; a and b must have one shape.
+double max_abs_diff(const ImageD& a, const ImageD& b);
+double max_abs_diff(const Image& a, const ImageD& b);
+// Path of a file under tests/data.
+std::string data_path(const std::string& name);
+
+}  // namespace vkfuse::test
