@@ -1,0 +1,41 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+// Methods that fuse each pixel on its own: Brovey and channel-sum.
+layout(local_size_x = 256) in;
+layout(push_constant, std430) uniform Push {
+    Floats src;  // planes (s*K + k)*C + c
+    Floats dst;  // planes s*C + c
+    uint pixels;
+    uint frames;
+    uint channels;
+    uint method;  // 0 brovey, 1 channel-sum
+} pc;
+
+void main() {
+    uint p = gl_GlobalInvocationID.x, z = gl_WorkGroupID.z;
+    if (p >= pc.pixels) return;
+    uint s = z / pc.channels, c = z % pc.channels;
+    float result;
+    if (pc.method == 1u) {
+        // channel c comes from frame c (lit by LED c alone)
+        result = pc.src.v[((s * pc.frames + c) * pc.channels + c) * pc.pixels + p];
+    } else {
+        float total = 0.0, mean = 0.0;
+        for (uint k = 0u; k < pc.frames; ++k) {
+            float v = pc.src.v[((s * pc.frames + k) * pc.channels + c) * pc.pixels + p];
+            total += max(v, 0.0);
+            mean += v;
+        }
+        if (total >= 1e-6) {
+            result = 0.0;
+            for (uint k = 0u; k < pc.frames; ++k) {
+                float v = pc.src.v[((s * pc.frames + k) * pc.channels + c) * pc.pixels + p];
+                result += (max(v, 0.0) / total) * v;
+            }
+        } else {
+            result = mean / float(pc.frames);
+        }
+    }
+    pc.dst.v[z * pc.pixels + p] = result;
+}

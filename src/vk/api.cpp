@@ -1,0 +1,75 @@
+#include "vk/api.hpp"
+
+#include <dlfcn.h>
+
+#include <string>
+
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::vk {
+
+std::unique_ptr<Api> Api::load() {
+    void* lib = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) lib = dlopen("libvulkan.so", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) throw Error(ErrorKind::Device, "Vulkan loader libvulkan.so.1 not found (install libvulkan1)");
+    auto api = std::make_unique<Api>();
+    api->library_ = lib;
+    api->vkGetInstanceProcAddr = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(lib, "vkGetInstanceProcAddr"));
+    if (!api->vkGetInstanceProcAddr)
+        throw Error(ErrorKind::Device, "Vulkan loader: vkGetInstanceProcAddr missing from libvulkan.so.1");
+#define VKFUSE_LOAD_GLOBAL(name) api->name = reinterpret_cast<PFN_##name>(api->vkGetInstanceProcAddr(nullptr, #name));
+    VKFUSE_GLOBAL_FUNCS(VKFUSE_LOAD_GLOBAL)
+#undef VKFUSE_LOAD_GLOBAL
+    if (!api->vkCreateInstance) throw Error(ErrorKind::Device, "Vulkan loader: vkCreateInstance unavailable");
+    return api;
+}
+
+void Api::load_instance(VkInstance instance) {
+#define VKFUSE_LOAD_INSTANCE(name)                                                              \
+    name = reinterpret_cast<PFN_##name>(vkGetInstanceProcAddr(instance, #name));               \
+    if (!name) throw Error(ErrorKind::Device, "Vulkan instance lacks " #name);
+    VKFUSE_INSTANCE_FUNCS(VKFUSE_LOAD_INSTANCE)
+#undef VKFUSE_LOAD_INSTANCE
+    // Debug utils exist only when the extension was enabled; null otherwise.
+#define VKFUSE_LOAD_OPTIONAL(name) name = reinterpret_cast<PFN_##name>(vkGetInstanceProcAddr(instance, #name));
+    VKFUSE_DEBUG_FUNCS(VKFUSE_LOAD_OPTIONAL)
+#undef VKFUSE_LOAD_OPTIONAL
+}
+
+void Api::load_device(VkDevice device) {
+#define VKFUSE_LOAD_DEVICE(name)                                                                \
+    name = reinterpret_cast<PFN_##name>(vkGetDeviceProcAddr(device, #name));                    \
+    if (!name) throw Error(ErrorKind::Device, "Vulkan device lacks " #name);
+    VKFUSE_DEVICE_FUNCS(VKFUSE_LOAD_DEVICE)
+#undef VKFUSE_LOAD_DEVICE
+}
+
+Api::~Api() {
+    if (library_) dlclose(library_);
+}
+
+const char* result_name(VkResult r) {
+    switch (r) {
+        case VK_SUCCESS: return "VK_SUCCESS";
+        case VK_NOT_READY: return "VK_NOT_READY";
+        case VK_TIMEOUT: return "VK_TIMEOUT";
+        case VK_ERROR_OUT_OF_HOST_MEMORY: return "out of host memory (VK_ERROR_OUT_OF_HOST_MEMORY)";
+        case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "out of device memory (VK_ERROR_OUT_OF_DEVICE_MEMORY)";
+        case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
+        case VK_ERROR_DEVICE_LOST: return "device lost (VK_ERROR_DEVICE_LOST)";
+        case VK_ERROR_LAYER_NOT_PRESENT: return "layer not present (VK_ERROR_LAYER_NOT_PRESENT)";
+        case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
+        case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
+        case VK_ERROR_INCOMPATIBLE_DRIVER: return "no compatible Vulkan driver (VK_ERROR_INCOMPATIBLE_DRIVER)";
+        case VK_ERROR_TOO_MANY_OBJECTS: return "VK_ERROR_TOO_MANY_OBJECTS";
+        default: return "VkResult error";
+    }
+}
+
+void check(VkResult result, const char* what) {
+    if (result != VK_SUCCESS)
+        throw Error(ErrorKind::Device, std::string("Vulkan ") + what + ": " + result_name(result) + " (" +
+                                           std::to_string(int(result)) + ")");
+}
+
+}  // namespace vkfuse::vk

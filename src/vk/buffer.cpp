@@ -1,0 +1,81 @@
+#include "vk/buffer.hpp"
+
+#include <utility>
+
+namespace vkfuse::vk {
+
+Buffer::Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use) : ctx_(&ctx), size_(bytes) {
+    auto& api = *ctx.api;
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bci.size = bytes < 256 ? 256 : bytes;  // never a zero-sized buffer
+    bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    check(api.vkCreateBuffer(ctx.device, &bci, nullptr, &buffer_), "vkCreateBuffer");
+    try {
+        VkMemoryRequirements req{};
+        api.vkGetBufferMemoryRequirements(ctx.device, buffer_, &req);
+        const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        std::uint32_t type = 0;
+        switch (use) {
+            case MemoryUse::Device:
+                type = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+                break;
+            case MemoryUse::Upload:
+                type = ctx.memory_type(req.memoryTypeBits, host, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+                break;
+            case MemoryUse::Readback:
+                type = ctx.memory_type(req.memoryTypeBits, host, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+                break;
+        }
+        VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+        flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+        VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        mai.pNext = &flags;
+        mai.allocationSize = req.size;
+        mai.memoryTypeIndex = type;
+        check(api.vkAllocateMemory(ctx.device, &mai, nullptr, &memory_), "vkAllocateMemory");
+        check(api.vkBindBufferMemory(ctx.device, buffer_, memory_, 0), "vkBindBufferMemory");
+        if (use != MemoryUse::Device)
+            check(api.vkMapMemory(ctx.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+        VkBufferDeviceAddressInfo bai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+        bai.buffer = buffer_;
+        address_ = api.vkGetBufferDeviceAddress(ctx.device, &bai);
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+void Buffer::release() {
+    if (!ctx_) return;
+    auto& api = *ctx_->api;
+    if (buffer_) api.vkDestroyBuffer(ctx_->device, buffer_, nullptr);
+    if (memory_) api.vkFreeMemory(ctx_->device, memory_, nullptr);  // unmaps implicitly
+    buffer_ = VK_NULL_HANDLE;
+    memory_ = VK_NULL_HANDLE;
+    mapped_ = nullptr;
+    ctx_ = nullptr;
+}
+
+Buffer::~Buffer() { release(); }
+
+Buffer::Buffer(Buffer&& o) noexcept
+    : ctx_(std::exchange(o.ctx_, nullptr)), buffer_(std::exchange(o.buffer_, VK_NULL_HANDLE)),
+      memory_(std::exchange(o.memory_, VK_NULL_HANDLE)), address_(std::exchange(o.address_, 0)),
+      size_(std::exchange(o.size_, 0)), mapped_(std::exchange(o.mapped_, nullptr)) {}
+
+Buffer& Buffer::operator=(Buffer&& o) noexcept {
+    if (this != &o) {
+        release();
+        ctx_ = std::exchange(o.ctx_, nullptr);
+        buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
+        memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
+        address_ = std::exchange(o.address_, 0);
+        size_ = std::exchange(o.size_, 0);
+        mapped_ = std::exchange(o.mapped_, nullptr);
+    }
+    return *this;
+}
+
+}  // namespace vkfuse::vk

@@ -1,0 +1,222 @@
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "vk/context_impl.hpp"
+#include "vk/device_info.hpp"
+#include "vk/shader_registry.hpp"
+#include "vkfuse/error.hpp"
+
+namespace vkfuse {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                 VkDebugUtilsMessageTypeFlagsEXT types,
+                                                 const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* impl = static_cast<Context::Impl*>(user);
+    // Count validation-type messages of warning or error severity: those are
+    // what tests fail on. Info/verbose chatter (e.g. loader notes) is ignored.
+    const bool counts = (types & VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT) &&
+                        severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    if (!counts) return VK_FALSE;
+    impl->validation_messages.fetch_add(1);
+    std::string text = data && data->pMessage ? data->pMessage : "(no message)";
+    if (impl->on_validation_message)
+        impl->on_validation_message(text);
+    else
+        std::fprintf(stderr, "vkfuse: Vulkan validation: %s\n", text.c_str());
+    return VK_FALSE;
+}
+
+bool has_layer(const vk::Api& api, const char* name) {
+    std::uint32_t n = 0;
+    api.vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    api.vkEnumerateInstanceLayerProperties(&n, layers.data());
+    return std::any_of(layers.begin(), layers.end(), [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+}  // namespace
+
+Context::Impl::Impl(const ContextOptions& options) : on_validation_message(options.on_validation_message) {
+    api = vk::Api::load();
+    // VKFUSE_VALIDATION=1 turns the layer on for any program (the CLI in tests).
+    const char* env = std::getenv("VKFUSE_VALIDATION");
+    const bool validation = options.validation || (env && std::strcmp(env, "1") == 0);
+    try {
+        create_instance(validation);
+        choose_device(options.device_index);
+        create_device();
+        create_layout();
+    } catch (...) {
+        release();  // members' destructors will not run release() for a throwing constructor
+        throw;
+    }
+}
+
+void Context::Impl::create_instance(bool validation) {
+    std::uint32_t version = VK_API_VERSION_1_0;
+    if (api->vkEnumerateInstanceVersion) api->vkEnumerateInstanceVersion(&version);
+    if (version < VK_API_VERSION_1_2)
+        throw Error(ErrorKind::Device, "Vulkan loader supports only API " + vk::version_string(version) +
+                                           ", vkfuse needs 1.2");
+    if (validation && !has_layer(*api, kValidationLayer))
+        throw Error(ErrorKind::Device, "validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                                       "(install vulkan-validationlayers)");
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "vkfuse";
+    app.pEngineName = "vkfuse";
+    app.apiVersion = VK_API_VERSION_1_2;
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    VkDebugUtilsMessengerCreateInfoEXT dbg{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    dbg.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    dbg.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    dbg.pfnUserCallback = on_debug_message;
+    dbg.pUserData = this;
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ci.pNext = validation ? &dbg : nullptr;  // also catches create/destroy-instance messages
+    ci.pApplicationInfo = &app;
+    ci.enabledLayerCount = std::uint32_t(layers.size());
+    ci.ppEnabledLayerNames = layers.data();
+    ci.enabledExtensionCount = std::uint32_t(extensions.size());
+    ci.ppEnabledExtensionNames = extensions.data();
+    vk::check(api->vkCreateInstance(&ci, nullptr, &instance), "vkCreateInstance");
+    api->load_instance(instance);
+    if (validation)
+        vk::check(api->vkCreateDebugUtilsMessengerEXT(instance, &dbg, nullptr, &messenger),
+                  "vkCreateDebugUtilsMessengerEXT");
+}
+
+void Context::Impl::choose_device(int index) {
+    auto devices = vk::enumerate_devices(*api, instance);
+    if (devices.empty()) throw Error(ErrorKind::Device, "no Vulkan device found (is mesa-vulkan-drivers installed?)");
+    const vk::PhysicalDeviceEntry* chosen = nullptr;
+    if (index >= 0) {
+        if (index >= int(devices.size()))
+            throw Error(ErrorKind::Device, "Vulkan device " + std::to_string(index) + " does not exist (" +
+                                               std::to_string(devices.size()) + " found)");
+        chosen = &devices[std::size_t(index)];
+        if (!chosen->info.usable)
+            throw Error(ErrorKind::Device, "Vulkan device " + std::to_string(index) + " (" + chosen->info.name +
+                                               ") is not usable: " + chosen->info.why_not);
+    } else {
+        chosen = vk::best_device(devices);
+        if (!chosen)
+            throw Error(ErrorKind::Device, "no usable Vulkan device: " + devices.front().info.name + ": " +
+                                               devices.front().info.why_not);
+    }
+    physical = chosen->handle;
+    info = chosen->info;
+    api->vkGetPhysicalDeviceProperties(physical, &properties);
+    api->vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+}
+
+void Context::Impl::create_device() {
+    std::uint32_t n = 0;
+    api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, families.data());
+    bool found = false;
+    for (std::uint32_t i = 0; i < n && !found; ++i)
+        if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+            queue_family = i;
+            timestamps = families[i].timestampValidBits > 0;
+            found = true;
+        }
+    if (!found) throw Error(ErrorKind::Device, info.name + ": no compute queue");
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qci.queueFamilyIndex = queue_family;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    f12.bufferDeviceAddress = VK_TRUE;
+    VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    dci.pNext = &f12;
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    vk::check(api->vkCreateDevice(physical, &dci, nullptr, &device), "vkCreateDevice");
+    api->load_device(device);
+    api->vkGetDeviceQueue(device, queue_family, 0, &queue);
+}
+
+void Context::Impl::create_layout() {
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushConstantBytes};
+    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    ci.pushConstantRangeCount = 1;
+    ci.pPushConstantRanges = &range;
+    vk::check(api->vkCreatePipelineLayout(device, &ci, nullptr, &layout), "vkCreatePipelineLayout");
+}
+
+VkPipeline Context::Impl::pipeline(const std::string& shader) {
+    std::lock_guard lock(pipelines_mutex_);
+    if (auto it = pipelines_.find(shader); it != pipelines_.end()) return it->second;
+    auto spirv = vk::shader_spirv(shader);
+    VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    mci.codeSize = spirv.size_bytes();
+    mci.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    vk::check(api->vkCreateShaderModule(device, &mci, nullptr, &module), "vkCreateShaderModule");
+    VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    pci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pci.stage.module = module;
+    pci.stage.pName = "main";
+    pci.layout = layout;
+    VkPipeline pipe = VK_NULL_HANDLE;
+    VkResult r = api->vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pci, nullptr, &pipe);
+    api->vkDestroyShaderModule(device, module, nullptr);  // the pipeline keeps what it needs
+    vk::check(r, ("vkCreateComputePipelines(" + shader + ")").c_str());
+    pipelines_.emplace(shader, pipe);
+    return pipe;
+}
+
+std::uint32_t Context::Impl::memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                                         VkMemoryPropertyFlags preferred) const {
+    int fallback = -1;
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+        if (!(type_bits & (1u << i))) continue;
+        auto flags = memory.memoryTypes[i].propertyFlags;
+        if ((flags & required) != required) continue;
+        if ((flags & preferred) == preferred) return i;
+        if (fallback < 0) fallback = int(i);
+    }
+    if (fallback < 0) throw Error(ErrorKind::Device, info.name + ": no suitable memory type");
+    return std::uint32_t(fallback);
+}
+
+Context::Impl::~Impl() { release(); }
+
+void Context::Impl::release() {
+    if (device) {
+        api->vkDeviceWaitIdle(device);
+        for (auto& [name, pipe] : pipelines_) api->vkDestroyPipeline(device, pipe, nullptr);
+        pipelines_.clear();
+        if (layout) api->vkDestroyPipelineLayout(device, layout, nullptr);
+        api->vkDestroyDevice(device, nullptr);
+        device = VK_NULL_HANDLE;
+        layout = VK_NULL_HANDLE;
+    }
+    if (messenger) api->vkDestroyDebugUtilsMessengerEXT(instance, messenger, nullptr);
+    messenger = VK_NULL_HANDLE;
+    if (instance) api->vkDestroyInstance(instance, nullptr);
+    instance = VK_NULL_HANDLE;
+}
+
+Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+Context::~Context() = default;
+Context::Context(Context&&) noexcept = default;
+Context& Context::operator=(Context&&) noexcept = default;
+const DeviceInfo& Context::device() const { return impl_->info; }
+std::uint64_t Context::validation_message_count() const { return impl_->validation_messages.load(); }
+
+}  // namespace vkfuse

@@ -1,0 +1,58 @@
+// Context::Impl: the instance, the chosen device, its compute queue and the
+// compute pipelines built so far (shared by every Plan of the Context).
+#pragma once
+#include <atomic>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "vk/api.hpp"
+#include "vkfuse/context.hpp"
+
+namespace vkfuse {
+
+struct Context::Impl {
+    std::unique_ptr<vk::Api> api;
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    std::uint32_t queue_family = 0;
+    VkPhysicalDeviceProperties properties{};
+    VkPhysicalDeviceMemoryProperties memory{};
+    DeviceInfo info;
+    bool timestamps = false;  // queue supports timestamp queries
+    VkPipelineLayout layout = VK_NULL_HANDLE;  // push constants only, shared by all kernels
+
+    std::function<void(const std::string&)> on_validation_message;
+    std::atomic<std::uint64_t> validation_messages{0};
+
+    explicit Impl(const ContextOptions& options);
+    ~Impl();
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    // The compute pipeline of an embedded shader, built on first use.
+    VkPipeline pipeline(const std::string& shader);
+
+    // First memory type with all `required` flags among those allowed by type_bits.
+    std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                              VkMemoryPropertyFlags preferred) const;
+
+private:
+    std::mutex pipelines_mutex_;
+    std::map<std::string, VkPipeline> pipelines_;
+
+    void create_instance(bool validation);
+    void choose_device(int index);
+    void create_device();
+    void create_layout();
+    void release();  // destroys every Vulkan object; safe to call twice
+};
+
+// Maximum push-constant bytes any vkfuse kernel uses (the guaranteed minimum).
+inline constexpr std::uint32_t kPushConstantBytes = 128;
+
+}  // namespace vkfuse

@@ -1,0 +1,114 @@
+#include "vk/device_info.hpp"
+
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::vk {
+namespace {
+
+const char* type_name(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+        default: return "other";
+    }
+}
+
+int type_rank(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+        default: return 0;
+    }
+}
+
+PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    VkPhysicalDeviceProperties basic{};
+    api.vkGetPhysicalDeviceProperties(dev, &basic);
+    const bool is12 = basic.apiVersion >= VK_API_VERSION_1_2;
+    if (is12) {
+        props.pNext = &driver;
+        api.vkGetPhysicalDeviceProperties2(dev, &props);
+    }
+    PhysicalDeviceEntry e;
+    e.handle = dev;
+    e.info.index = index;
+    e.info.name = basic.deviceName;
+    e.info.driver = is12 ? std::string(driver.driverName) + " " + driver.driverInfo : "unknown";
+    e.info.type = type_name(basic.deviceType);
+    e.info.api_version = version_string(basic.apiVersion);
+    e.rank = type_rank(basic.deviceType);
+    if (!is12) {
+        e.info.why_not = "Vulkan " + e.info.api_version + " < 1.2";
+        return e;
+    }
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f.pNext = &f12;
+    api.vkGetPhysicalDeviceFeatures2(dev, &f);
+    if (!f12.bufferDeviceAddress) {
+        e.info.why_not = "no bufferDeviceAddress feature";
+        return e;
+    }
+    e.info.usable = true;
+    return e;
+}
+
+}  // namespace
+
+std::string version_string(std::uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+std::vector<PhysicalDeviceEntry> enumerate_devices(const Api& api, VkInstance instance) {
+    std::uint32_t n = 0;
+    VkResult r = api.vkEnumeratePhysicalDevices(instance, &n, nullptr);
+    if (r == VK_ERROR_INITIALIZATION_FAILED) return {};
+    check(r, "vkEnumeratePhysicalDevices");
+    std::vector<VkPhysicalDevice> handles(n);
+    check(api.vkEnumeratePhysicalDevices(instance, &n, handles.data()), "vkEnumeratePhysicalDevices");
+    std::vector<PhysicalDeviceEntry> out;
+    for (std::uint32_t i = 0; i < n; ++i) out.push_back(describe(api, handles[i], int(i)));
+    return out;
+}
+
+const PhysicalDeviceEntry* best_device(const std::vector<PhysicalDeviceEntry>& devices) {
+    const PhysicalDeviceEntry* best = nullptr;
+    for (auto& d : devices)
+        if (d.info.usable && (!best || d.rank > best->rank)) best = &d;
+    return best;
+}
+
+}  // namespace vkfuse::vk
+
+namespace vkfuse {
+
+std::vector<DeviceInfo> list_devices() {
+    auto api = vk::Api::load();
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.apiVersion = VK_API_VERSION_1_2;
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ci.pApplicationInfo = &app;
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult r = api->vkCreateInstance(&ci, nullptr, &instance);
+    if (r == VK_ERROR_INCOMPATIBLE_DRIVER) return {};
+    vk::check(r, "vkCreateInstance");
+    std::vector<DeviceInfo> out;
+    try {
+        api->load_instance(instance);
+        for (auto& e : vk::enumerate_devices(*api, instance)) out.push_back(e.info);
+    } catch (...) {
+        if (api->vkDestroyInstance) api->vkDestroyInstance(instance, nullptr);
+        throw;
+    }
+    api->vkDestroyInstance(instance, nullptr);
+    return out;
+}
+
+}  // namespace vkfuse

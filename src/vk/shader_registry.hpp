@@ -1,0 +1,12 @@
+// The SPIR-V of every kernel, compiled at build time and embedded here.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace vkfuse::vk {
+
+// SPIR-V words of shaders/<name>.comp; throws Error if there is no such shader.
+std::span<const std::uint32_t> shader_spirv(const std::string& name);
+
+}  // namespace vkfuse::vk
