@@ -1,0 +1,71 @@
+// Laplacian pyramid fusion (SPEC.md): pyrDown chain per frame, level-by-level
+// fusion of G_l - pyrUp(G_{l+1}) (the Laplacian coefficient is formed inside
+// the fusion kernel, never stored), then collapse from the top, in place.
+#include <vector>
+
+#include "vk/plan_impl.hpp"
+
+namespace vkfuse::vk {
+namespace {
+
+struct Level {
+    std::uint32_t w, h;
+    VkDeviceAddress gauss;  // G_l of every frame: S*K*C planes
+    VkDeviceAddress fused;  // C_l, then R_l: S*C planes
+};
+
+std::uint32_t rule_id(Rule r) { return std::uint32_t(r); }
+
+}  // namespace
+
+VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
+    const int L = g.cfg.fusion.effective_levels();
+    std::vector<Level> lv(std::size_t(L) + 1);
+    lv[0] = {std::uint32_t(g.cfg.width), std::uint32_t(g.cfg.height), input, 0};
+    for (int l = 1; l <= L; ++l) {
+        auto& p = lv[std::size_t(l) - 1];
+        auto& c = lv[std::size_t(l)];
+        c.w = (p.w + 1) / 2;
+        c.h = (p.h + 1) / 2;
+        c.gauss = g.floats(std::uint64_t(g.planes_in()) * c.w * c.h);
+        g.rec.dispatch("pyr_down", PushConstants().ptr(p.gauss).ptr(c.gauss).i32(int(p.w)).i32(int(p.h)).i32(int(c.w)).i32(int(c.h)),
+                       groups(c.w, 16), groups(c.h, 16), g.planes_in());
+    }
+    g.rec.mark("pyr_down");
+    for (int l = 0; l <= L; ++l) {
+        auto& c = lv[std::size_t(l)];
+        const bool top = l == L;
+        const Level& coarse = top ? c : lv[std::size_t(l) + 1];
+        c.fused = g.floats(std::uint64_t(g.planes_out()) * c.w * c.h);
+        g.rec.dispatch("rule_fuse",
+                       PushConstants()
+                           .ptr(c.gauss)
+                           .ptr(coarse.gauss)
+                           .ptr(c.fused)
+                           .i32(int(c.w))
+                           .i32(int(c.h))
+                           .i32(int(c.w))
+                           .u32(c.w * c.h)
+                           .i32(int(coarse.w))
+                           .i32(int(coarse.h))
+                           .u32(std::uint32_t(g.cfg.frames))
+                           .u32(std::uint32_t(g.cfg.channels))
+                           .u32(rule_id(g.cfg.fusion.base_rule))
+                           .u32(rule_id(g.cfg.fusion.detail_rule))
+                           .i32(top ? int(c.w) : 0)
+                           .i32(top ? int(c.h) : 0)
+                           .u32(top ? 0 : 1),
+                       groups(c.w, 16), groups(c.h, 16), g.planes_out());
+    }
+    g.rec.mark("lap_fuse");
+    for (int l = L - 1; l >= 0; --l) {
+        auto& c = lv[std::size_t(l)];
+        auto& up = lv[std::size_t(l) + 1];
+        g.rec.dispatch("lap_collapse", PushConstants().ptr(up.fused).ptr(c.fused).i32(int(c.w)).i32(int(c.h)).i32(int(up.w)).i32(int(up.h)),
+                       groups(c.w, 16), groups(c.h, 16), g.planes_out());
+    }
+    g.rec.mark("lap_collapse");
+    return lv[0].fused;
+}
+
+}  // namespace vkfuse::vk

@@ -1,0 +1,256 @@
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "vk/plan_impl.hpp"
+#include "vkfuse/error.hpp"
+
+namespace vkfuse {
+namespace {
+
+void validate_config(const PlanConfig& c) {
+    validate(c.fusion, c.height, c.width, c.channels, c.frames);
+    if (c.sensors < 1) throw Error(ErrorKind::InvalidArgument, "plan: sensors must be >= 1");
+    if (c.background_diff && !c.want_metrics)
+        throw Error(ErrorKind::InvalidArgument, "plan: background_diff needs want_metrics");
+    // Kernels index with 32-bit integers: keep every buffer below 2^32 floats.
+    const double elems = double(c.height) * c.width * c.channels * c.frames * c.sensors;
+    if (elems * 2 >= double(std::numeric_limits<std::uint32_t>::max()))
+        throw Error(ErrorKind::InvalidArgument, "plan: " + std::to_string(c.sensors) + " sensors x " +
+                                                    std::to_string(c.frames) + " frames of " + std::to_string(c.width) +
+                                                    "x" + std::to_string(c.height) + " exceed one plan's size limit");
+}
+
+std::size_t pixel_bytes(PixelType t) { return t == PixelType::U8 ? 1 : 4; }
+
+}  // namespace
+
+Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context), cfg(config) {
+    validate_config(cfg);
+    const std::size_t frame_bytes = std::size_t(cfg.height) * cfg.width * cfg.channels * pixel_bytes(cfg.input);
+    const std::size_t plane_floats = std::size_t(cfg.height) * cfg.width;
+    const std::size_t sensor_floats = plane_floats * cfg.channels;
+    try {
+        auto& api = *ctx.api;
+        upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
+        if (cfg.background_diff)
+            background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
+        const std::size_t fused_bytes = cfg.want_fused ? sensor_floats * cfg.sensors * 4 : 0;
+        totals_offset = (fused_bytes + 255) / 256 * 256;
+        readback = vk::Buffer(ctx, totals_offset + std::size_t(cfg.sensors) * 8 * 4, vk::MemoryUse::Readback);
+        VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pci.queueFamilyIndex = ctx.queue_family;
+        vk::check(api.vkCreateCommandPool(ctx.device, &pci, nullptr, &pool), "vkCreateCommandPool");
+        VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        cai.commandPool = pool;
+        cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        cai.commandBufferCount = 1;
+        vk::check(api.vkAllocateCommandBuffers(ctx.device, &cai, &cmd), "vkAllocateCommandBuffers");
+        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        vk::check(api.vkCreateFence(ctx.device, &fci, nullptr, &fence), "vkCreateFence");
+        if (cfg.profile) {
+            if (!ctx.timestamps) throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
+            VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+            qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+            qci.queryCount = vk::Recorder::kMaxTimestamps;
+            vk::check(api.vkCreateQueryPool(ctx.device, &qci, nullptr, &queries), "vkCreateQueryPool");
+        }
+        record();
+    } catch (...) {
+        release();
+        throw;
+    }
+    background_set.assign(std::size_t(cfg.sensors), false);
+    fused.resize(std::size_t(cfg.sensors));
+    fused_fresh.assign(std::size_t(cfg.sensors), false);
+}
+
+void Plan::Impl::record() {
+    vk::Recorder rec(ctx, cmd, queries);
+    vk::GraphBuilder g{ctx, cfg, rec, buffers};
+    const std::uint32_t w = std::uint32_t(cfg.width), h = std::uint32_t(cfg.height);
+    VkDeviceAddress input = g.floats(std::uint64_t(g.planes_in()) * w * h);
+    rec.dispatch("unpack",
+                 vk::PushConstants()
+                     .ptr(upload.address())
+                     .ptr(input)
+                     .u32(w)
+                     .u32(h)
+                     .u32(std::uint32_t(cfg.channels))
+                     .u32(cfg.input == PixelType::U8)
+                     .u32(w * h * std::uint32_t(cfg.channels))
+                     .u32(w * h),
+                 vk::groups(w, 16), vk::groups(h, 16), std::uint32_t(cfg.sensors * cfg.frames));
+    rec.mark("unpack");
+    VkDeviceAddress fused_planes = input;  // passthrough: the frame is its own result
+    switch (cfg.fusion.method) {
+        case Method::Passthrough: break;
+        case Method::ChannelSum:
+        case Method::Brovey: fused_planes = record_pointwise(g, input); break;
+        case Method::Laplacian: fused_planes = record_laplacian(g, input); break;
+        case Method::Wavelet: fused_planes = record_wavelet(g, input); break;
+    }
+    if (cfg.want_metrics) {
+        const VkDeviceAddress totals = readback.address() + totals_offset;
+        record_metrics(g, fused_planes, cfg.background_diff ? background.address() : 0, totals,
+                       totals + std::size_t(cfg.sensors) * 16);
+    }
+    if (cfg.want_fused) {
+        rec.dispatch("pack",
+                     vk::PushConstants().ptr(fused_planes).ptr(readback.address()).u32(w * h).u32(std::uint32_t(cfg.channels)),
+                     vk::groups(std::uint64_t(w) * h, 256), 1, std::uint32_t(cfg.sensors));
+        rec.mark("pack");
+    }
+    rec.finish();
+    stage_names = rec.stage_names();
+}
+
+void Plan::Impl::submit_and_wait() {
+    auto& api = *ctx.api;
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    vk::check(api.vkResetFences(ctx.device, 1, &fence), "vkResetFences");
+    vk::check(api.vkQueueSubmit(ctx.queue, 1, &si, fence), "vkQueueSubmit");
+    vk::check(api.vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()),
+              "vkWaitForFences");
+}
+
+void Plan::Impl::release() {
+    if (!ctx.device) return;
+    auto& api = *ctx.api;
+    if (fence) {
+        api.vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max());
+        api.vkDestroyFence(ctx.device, fence, nullptr);
+    }
+    if (queries) api.vkDestroyQueryPool(ctx.device, queries, nullptr);
+    if (pool) api.vkDestroyCommandPool(ctx.device, pool, nullptr);  // frees cmd
+    fence = VK_NULL_HANDLE;
+    queries = VK_NULL_HANDLE;
+    pool = VK_NULL_HANDLE;
+    cmd = VK_NULL_HANDLE;
+}
+
+Plan::Impl::~Impl() { release(); }
+
+namespace {
+
+void check_view(const FrameView& v, const PlanConfig& c, const std::string& what) {
+    if (!v.data) throw Error(ErrorKind::InvalidArgument, what + ": no pixel data");
+    if (v.height != c.height || v.width != c.width || v.channels != c.channels)
+        throw Error(ErrorKind::Shape, what + ": shape " + std::to_string(v.height) + "x" + std::to_string(v.width) + "x" +
+                                          std::to_string(v.channels) + " differs from the plan's " +
+                                          std::to_string(c.height) + "x" + std::to_string(c.width) + "x" +
+                                          std::to_string(c.channels));
+    if (v.type != c.input) throw Error(ErrorKind::InvalidArgument, what + ": pixel type differs from the plan's");
+}
+
+}  // namespace
+
+Plan::Plan(Context& context, const PlanConfig& config) : impl_(std::make_unique<Impl>(context.impl(), config)) {}
+Plan::~Plan() = default;
+Plan::Plan(Plan&&) noexcept = default;
+Plan& Plan::operator=(Plan&&) noexcept = default;
+const PlanConfig& Plan::config() const { return impl_->cfg; }
+
+void Plan::set_background(int sensor, const FrameView& bg) {
+    auto& im = *impl_;
+    if (!im.cfg.background_diff) throw Error(ErrorKind::InvalidArgument, "plan: created without background_diff");
+    if (sensor < 0 || sensor >= im.cfg.sensors)
+        throw Error(ErrorKind::InvalidArgument, "background: sensor " + std::to_string(sensor) + " out of range");
+    check_view(bg, im.cfg, "background of sensor " + std::to_string(sensor));
+    // Backgrounds change rarely: convert to planar float here, once, on the host.
+    const std::size_t pixels = std::size_t(bg.height) * bg.width, C = std::size_t(bg.channels);
+    float* dst = static_cast<float*>(im.background.mapped()) + std::size_t(sensor) * pixels * C;
+    for (std::size_t p = 0; p < pixels; ++p)
+        for (std::size_t c = 0; c < C; ++c)
+            dst[c * pixels + p] = bg.type == PixelType::U8
+                                      ? float(static_cast<const std::uint8_t*>(bg.data)[p * C + c]) / 255.0f
+                                      : static_cast<const float*>(bg.data)[p * C + c];
+    im.background_set[std::size_t(sensor)] = true;
+}
+
+void Plan::run(std::span<const FrameView> frames) {
+    auto& im = *impl_;
+    const auto& c = im.cfg;
+    const std::size_t expected = std::size_t(c.sensors) * c.frames;
+    if (frames.size() != expected)
+        throw Error(ErrorKind::InvalidArgument, "plan run: got " + std::to_string(frames.size()) + " frames, expected " +
+                                                    std::to_string(c.sensors) + " sensors x " +
+                                                    std::to_string(c.frames) + " = " + std::to_string(expected));
+    for (std::size_t i = 0; i < frames.size(); ++i)
+        check_view(frames[i], c, "frame " + std::to_string(i % c.frames) + " of sensor " + std::to_string(i / c.frames));
+    if (c.background_diff)
+        for (int s = 0; s < c.sensors; ++s)
+            if (!im.background_set[std::size_t(s)])
+                throw Error(ErrorKind::InvalidArgument, "plan run: no background set for sensor " + std::to_string(s));
+    auto* dst = static_cast<std::uint8_t*>(im.upload.mapped());
+    for (const auto& f : frames) {
+        std::memcpy(dst, f.data, f.bytes());
+        dst += f.bytes();
+    }
+    im.submit_and_wait();
+    im.has_run = true;
+    std::fill(im.fused_fresh.begin(), im.fused_fresh.end(), false);
+}
+
+const Image& Plan::fused(int sensor) const {
+    auto& im = *impl_;
+    if (!im.cfg.want_fused) throw Error(ErrorKind::InvalidArgument, "plan: created without want_fused");
+    if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: fused() before run()");
+    if (sensor < 0 || sensor >= im.cfg.sensors)
+        throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
+    auto& img = im.fused[std::size_t(sensor)];
+    if (!im.fused_fresh[std::size_t(sensor)]) {
+        img = Image(im.cfg.height, im.cfg.width, im.cfg.channels);
+        const float* src = static_cast<const float*>(im.readback.mapped()) + std::size_t(sensor) * img.size();
+        std::memcpy(img.data.data(), src, img.size() * sizeof(float));
+        im.fused_fresh[std::size_t(sensor)] = true;
+    }
+    return img;
+}
+
+Metrics Plan::metrics(int sensor) const {
+    auto& im = *impl_;
+    if (!im.cfg.want_metrics) throw Error(ErrorKind::InvalidArgument, "plan: created without want_metrics");
+    if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: metrics() before run()");
+    if (sensor < 0 || sensor >= im.cfg.sensors)
+        throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
+    const float* t = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
+                                                    im.totals_offset);
+    const float* t0 = t + std::size_t(sensor) * 4;
+    const float* t1 = t + std::size_t(im.cfg.sensors) * 4 + std::size_t(sensor) * 4;
+    const double n = double(im.cfg.height) * im.cfg.width;
+    Metrics m;
+    m.sharpness = double(t0[0]) / n;
+    m.contrast = std::sqrt(std::max(0.0, double(t1[0])) / n);
+    if (im.cfg.background_diff) m.background_diff = double(t0[2]) / (n * im.cfg.channels);
+    return m;
+}
+
+std::vector<KernelTime> Plan::profile() const {
+    auto& im = *impl_;
+    if (!im.cfg.profile) throw Error(ErrorKind::InvalidArgument, "plan: created without profile");
+    if (!im.has_run) return {};
+    const std::uint32_t n = std::uint32_t(im.stage_names.size()) + 1;
+    std::vector<std::uint64_t> ticks(n);
+    vk::check(im.ctx.api->vkGetQueryPoolResults(im.ctx.device, im.queries, 0, n, n * sizeof(std::uint64_t), ticks.data(),
+                                                 sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+              "vkGetQueryPoolResults");
+    std::vector<KernelTime> out;
+    const double ns_per_tick = im.ctx.properties.limits.timestampPeriod;
+    for (std::uint32_t i = 0; i + 1 < n; ++i)
+        out.push_back({im.stage_names[i], double(ticks[i + 1] - ticks[i]) * ns_per_tick * 1e-6});
+    return out;
+}
+
+}  // namespace vkfuse
+
+namespace vkfuse::vk {
+
+VkDeviceAddress GraphBuilder::floats(std::uint64_t count) {
+    buffers.emplace_back(ctx, count * sizeof(float), MemoryUse::Device);
+    return buffers.back().address();
+}
+
+}  // namespace vkfuse::vk

@@ -1,0 +1,71 @@
+// Plan::Impl and the pieces the per-method graph builders share.
+#pragma once
+#include <vector>
+
+#include "vk/buffer.hpp"
+#include "vk/recorder.hpp"
+#include "vkfuse/plan.hpp"
+
+namespace vkfuse::vk {
+
+// What a graph builder works with while a plan is being recorded.
+struct GraphBuilder {
+    Context::Impl& ctx;
+    const PlanConfig& cfg;
+    Recorder& rec;
+    std::vector<Buffer>& buffers;  // owned by the plan; every intermediate lives here
+
+    std::uint32_t planes_in() const { return std::uint32_t(cfg.sensors * cfg.frames * cfg.channels); }
+    std::uint32_t planes_out() const { return std::uint32_t(cfg.sensors * cfg.channels); }
+    // A new device buffer of count floats; returns its device address.
+    VkDeviceAddress floats(std::uint64_t count);
+};
+
+// Records the fusion of the unpacked input planes (S*K*C planes of H x W,
+// plane (s*K + k)*C + c) and returns the address of the fused planes (S*C
+// planes of H x W, plane s*C + c).
+VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input);
+VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input);
+VkDeviceAddress record_wavelet(GraphBuilder& g, VkDeviceAddress input);
+
+// Records the metric reductions over the fused planes; the two vec4 totals per
+// sensor (pass 0: sharpness sum, luma sum, |I-B| sum; pass 1: squared
+// deviation sum) land at totals0 / totals1 (host-visible).
+void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, VkDeviceAddress totals0,
+                    VkDeviceAddress totals1);
+
+}  // namespace vkfuse::vk
+
+namespace vkfuse {
+
+struct Plan::Impl {
+    Context::Impl& ctx;
+    PlanConfig cfg;
+    vk::Buffer upload;      // frames as given, host-written each run
+    vk::Buffer background;  // planar float backgrounds, host-written by set_background
+    vk::Buffer readback;    // fused HWC images, then metric totals
+    std::vector<vk::Buffer> buffers;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    VkQueryPool queries = VK_NULL_HANDLE;
+    std::vector<std::string> stage_names;
+    std::size_t totals_offset = 0;  // bytes into readback
+    std::vector<bool> background_set;
+    bool has_run = false;
+    std::vector<Image> fused;  // filled lazily from readback after a run
+    std::vector<bool> fused_fresh;
+
+    Impl(Context::Impl& context, const PlanConfig& config);
+    ~Impl();
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    void record();
+    void submit_and_wait();
+
+private:
+    void release();
+};
+
+}  // namespace vkfuse

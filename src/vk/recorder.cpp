@@ -1,0 +1,61 @@
+#include "vk/recorder.hpp"
+
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::vk {
+
+PushConstants& PushConstants::put(const void* v, std::size_t n) {
+    if (size_ + n > bytes_.size()) throw Error(ErrorKind::Device, "internal: push constants exceed 128 bytes");
+    std::memcpy(bytes_.data() + size_, v, n);
+    size_ += n;
+    return *this;
+}
+
+Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries)
+    : ctx_(ctx), cmd_(cmd), queries_(queries) {
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    check(ctx.api->vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+    if (queries_) {
+        ctx.api->vkCmdResetQueryPool(cmd_, queries_, 0, kMaxTimestamps);
+        ctx.api->vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+    }
+    // Frames the host wrote before the submit are read by the first kernels.
+    barrier(VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_SHADER_READ_BIT);
+}
+
+void Recorder::barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
+                       VkAccessFlags dst_access) {
+    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    mb.srcAccessMask = src_access;
+    mb.dstAccessMask = dst_access;
+    ctx_.api->vkCmdPipelineBarrier(cmd_, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
+}
+
+void Recorder::dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,
+                        std::uint32_t gz) {
+    if (gx == 0 || gy == 0 || gz == 0) return;
+    if (!first_)
+        barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    first_ = false;
+    auto& api = *ctx_.api;
+    api.vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader));
+    api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
+    api.vkCmdDispatch(cmd_, gx, gy, gz);
+}
+
+void Recorder::mark(const std::string& name) {
+    if (!queries_) return;
+    if (names_.size() + 2 > kMaxTimestamps) throw Error(ErrorKind::Device, "internal: too many profiled stages");
+    names_.push_back(name);
+    ctx_.api->vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, queries_, std::uint32_t(names_.size()));
+}
+
+void Recorder::finish() {
+    barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+            VK_ACCESS_HOST_READ_BIT);
+    check(ctx_.api->vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+}
+
+}  // namespace vkfuse::vk

@@ -1,0 +1,107 @@
+// GPU metric reductions against the double reference, up to 4096 x 4096.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+#include "vk_fixture.hpp"
+#include "vkfuse/io.hpp"
+#include "vkfuse/reference.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+constexpr double kRelTolerance = 1e-5;  // SPEC.md: each metric, relative
+
+void expect_close(double gpu, double ref, const char* what) {
+    if (ref == 0.0)
+        EXPECT_LE(std::abs(gpu), 1e-7) << what;
+    else
+        EXPECT_LE(std::abs(gpu - ref) / std::abs(ref), kRelTolerance) << what << ": gpu " << gpu << " ref " << ref;
+}
+
+Metrics gpu_metrics(Context& ctx, const ImageD& img, const ImageD* bg) {
+    FusionSpec s;
+    s.method = Method::Passthrough;
+    PlanConfig cfg{s, img.height, img.width, img.channels, 1, 1};
+    cfg.want_fused = false;
+    cfg.background_diff = bg != nullptr;
+    Plan plan(ctx, cfg);
+    Image f = convert<float>(img);
+    Image b;
+    if (bg) {
+        b = convert<float>(*bg);
+        plan.set_background(0, FrameView::of(b));
+    }
+    std::vector<FrameView> views{FrameView::of(f)};
+    plan.run(views);
+    return plan.metrics(0);
+}
+
+void check_metrics(Context& ctx, const ImageD& img, const ImageD& bg) {
+    SCOPED_TRACE(std::to_string(img.height) + "x" + std::to_string(img.width) + "x" + std::to_string(img.channels));
+    Metrics ref = metrics_reference(img, &bg);
+    Metrics gpu = gpu_metrics(ctx, img, &bg);
+    expect_close(gpu.sharpness, ref.sharpness, "sharpness");
+    expect_close(gpu.contrast, ref.contrast, "contrast");
+    ASSERT_TRUE(gpu.background_diff && ref.background_diff);
+    expect_close(*gpu.background_diff, *ref.background_diff, "background_diff");
+}
+
+class VulkanMetrics : public VulkanTest {};
+
+TEST_F(VulkanMetrics, OddAndTinySizes) {
+    std::uint32_t seed = 1;
+    for (auto [h, w] : {std::pair{1, 1}, {1, 7}, {7, 1}, {2, 3}, {5, 7}, {61, 97}, {240, 320}, {481, 641}})
+        for (int c : {1, 3}) {
+            check_metrics(ctx(), random_image(h, w, c, seed), structured_image(h, w, c, seed + 1));
+            seed += 2;
+        }
+}
+
+TEST_F(VulkanMetrics, LargestSize4096) {
+    check_metrics(ctx(), random_image(4096, 4096, 3, 7), structured_image(4096, 4096, 3, 8));
+}
+
+TEST_F(VulkanMetrics, RealDigitFrame) {
+    ImageD frame = convert<double>(io::read_image(data_path("digit_bg_tacto.png")));
+    ImageD shifted = frame;
+    for (auto& v : shifted.data) v = v * 0.9 + 0.05;
+    check_metrics(ctx(), frame, shifted);
+}
+
+TEST_F(VulkanMetrics, ConstantImageHasNoSharpnessNorContrast) {
+    ImageD flat(64, 48, 3);
+    for (auto& v : flat.data) v = 0.5;
+    Metrics m = gpu_metrics(ctx(), flat, nullptr);
+    EXPECT_EQ(m.sharpness, 0.0);
+    EXPECT_LE(m.contrast, 1e-7);
+    EXPECT_FALSE(m.background_diff.has_value());
+}
+
+TEST_F(VulkanMetrics, EverySensorOfABatchIsScoredOnItsOwn) {
+    FusionSpec s;
+    s.method = Method::Passthrough;
+    const int S = 4;
+    PlanConfig cfg{s, 50, 70, 3, 1, S};
+    cfg.want_fused = true;
+    std::vector<ImageD> frames;
+    std::vector<Image> f32;
+    for (int i = 0; i < S; ++i) {
+        frames.push_back(i % 2 ? random_image(50, 70, 3, 200 + i) : structured_image(50, 70, 3, 200 + i));
+        f32.push_back(convert<float>(frames.back()));
+    }
+    Plan plan = run_plan(ctx(), cfg, f32);
+    for (int i = 0; i < S; ++i) {
+        SCOPED_TRACE("sensor " + std::to_string(i));
+        Metrics ref = metrics_reference(frames[std::size_t(i)]);
+        expect_close(plan.metrics(i).sharpness, ref.sharpness, "sharpness");
+        expect_close(plan.metrics(i).contrast, ref.contrast, "contrast");
+        EXPECT_LE(max_abs_diff(plan.fused(i), frames[std::size_t(i)]), 0.0);
+    }
+}
+
+}  // namespace
+}  // namespace vkfuse::test

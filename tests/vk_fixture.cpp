@@ -1,0 +1,44 @@
+#include "vk_fixture.hpp"
+
+namespace vkfuse::test {
+
+ValidationLog& validation_log() {
+    static ValidationLog log;
+    return log;
+}
+
+Context& shared_context() {
+    static Context ctx([] {
+        ContextOptions o;
+        o.validation = true;
+        o.on_validation_message = [](const std::string& m) {
+            auto& log = validation_log();
+            std::lock_guard lock(log.mutex);
+            log.messages.push_back(m);
+        };
+        return o;
+    }());
+    return ctx;
+}
+
+void VulkanTest::SetUp() {
+    shared_context();
+    std::lock_guard lock(validation_log().mutex);
+    messages_before_ = validation_log().messages.size();
+}
+
+void VulkanTest::TearDown() {
+    std::lock_guard lock(validation_log().mutex);
+    auto& all = validation_log().messages;
+    for (std::size_t i = messages_before_; i < all.size(); ++i) ADD_FAILURE() << "Vulkan validation: " << all[i];
+}
+
+Plan run_plan(Context& ctx, const PlanConfig& cfg, const std::vector<Image>& frames) {
+    Plan plan(ctx, cfg);
+    std::vector<FrameView> views;
+    for (const auto& f : frames) views.push_back(FrameView::of(f));
+    plan.run(views);
+    return plan;
+}
+
+}  // namespace vkfuse::test

@@ -1,0 +1,36 @@
+// One validated Vulkan context per test binary; every GPU test asserts that
+// the validation layer stayed silent while it ran.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "vkfuse/context.hpp"
+#include "vkfuse/plan.hpp"
+
+namespace vkfuse::test {
+
+struct ValidationLog {
+    std::mutex mutex;
+    std::vector<std::string> messages;
+};
+
+ValidationLog& validation_log();
+Context& shared_context();  // created on first use with validation on
+
+class VulkanTest : public ::testing::Test {
+protected:
+    void SetUp() override;
+    void TearDown() override;
+    Context& ctx() { return shared_context(); }
+
+private:
+    std::size_t messages_before_ = 0;
+};
+
+// Runs one plan over frames (sensor-major, S*K images) and returns it.
+Plan run_plan(Context& ctx, const PlanConfig& cfg, const std::vector<Image>& frames);
+
+}  // namespace vkfuse::test
