@@ -42,6 +42,8 @@ Method parse_method(std::string_view);
 Wavelet parse_wavelet(std::string_view);
 WaveletMode parse_wavelet_mode(std::string_view);
 Rule parse_rule(std::string_view);
+// As parse_rule, naming the option in the message ("--base-rule" or "--detail-rule").
+Rule parse_rule(std::string_view name, std::string_view option);
 
 // Length of PyWavelets' decomposition filter (haar 2, db2 4, bior2.2 6, bior4.4 10).
 int filter_length(Wavelet);

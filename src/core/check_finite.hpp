@@ -1,0 +1,13 @@
+// core/check_finite.hpp - the reference path refuses NaN and Inf (SPEC.md: they
+// are bad input), so rules like max-abs never have to order them.
+#pragma once
+#include <string>
+
+#include "vkfuse/image.hpp"
+
+namespace vkfuse::core {
+
+// Throws Error(Numeric) "<what>: NaN at row y, column x, channel c" (or Inf).
+void require_finite(const ImageD& image, const std::string& what);
+
+}  // namespace vkfuse::core

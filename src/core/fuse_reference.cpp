@@ -1,0 +1,60 @@
+// fuse_reference(): validation, then dispatch to the method (include/vkfuse/reference.hpp).
+#include <string>
+#include <vector>
+
+#include "core/check_finite.hpp"
+#include "core/fusion_methods.hpp"
+#include "vkfuse/error.hpp"
+#include "vkfuse/reference.hpp"
+
+namespace vkfuse {
+namespace {
+
+std::string shape_text(const ImageD& f) {
+    return std::to_string(f.height) + "x" + std::to_string(f.width) + "x" + std::to_string(f.channels);
+}
+
+// Frames are numbered from 1 in messages, as SPEC.md writes I_1 .. I_K.
+void check_frames(std::span<const ImageD> frames) {
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        const std::string name = "frame " + std::to_string(k + 1);
+        if (!frames[k].same_shape(frames[0]) || frames[k].data.size() != frames[0].pixels() * frames[0].channels)
+            throw Error(ErrorKind::Shape, name + ": shape " + shape_text(frames[k]) + " differs from frame 1's " +
+                                              shape_text(frames[0]));
+        core::require_finite(frames[k], name);
+    }
+}
+
+// Runs a single-plane method on every channel of every frame.
+template <class PlaneFusion>
+ImageD per_channel(std::span<const ImageD> frames, PlaneFusion fuse) {
+    ImageD out(frames[0].height, frames[0].width, frames[0].channels);
+    std::vector<core::Plane> planes(frames.size());
+    for (int c = 0; c < out.channels; ++c) {
+        for (std::size_t k = 0; k < frames.size(); ++k) planes[k] = core::extract_channel(frames[k], c);
+        core::insert_channel(fuse(std::span<const core::Plane>(planes)), out, c);
+    }
+    return out;
+}
+
+}  // namespace
+
+ImageD fuse_reference(std::span<const ImageD> frames, const FusionSpec& spec) {
+    if (frames.empty()) validate(spec, 1, 1, 1, 0);  // throws the frame-count message
+    validate(spec, frames[0].height, frames[0].width, frames[0].channels, int(frames.size()));
+    check_frames(frames);
+    switch (spec.method) {
+        case Method::Passthrough: return frames[0];
+        case Method::ChannelSum: return core::fuse_channel_sum(frames);
+        case Method::Brovey: return core::fuse_brovey(frames);
+        case Method::Laplacian:
+            return per_channel(frames, [&](std::span<const core::Plane> p) {
+                return core::fuse_laplacian(p, spec.effective_levels(), spec.base_rule, spec.detail_rule);
+            });
+        case Method::Wavelet:
+            return per_channel(frames, [&](std::span<const core::Plane> p) { return core::fuse_wavelet(p, spec); });
+    }
+    throw Error(ErrorKind::InvalidArgument, "--method: invalid method enumerator");
+}
+
+}  // namespace vkfuse
