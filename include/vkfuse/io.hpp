@@ -18,6 +18,11 @@ Image read_image(const std::string& path);
 // and renames it, so a failure never leaves a partial file. Throws Error(Io/InvalidArgument).
 void write_image(const std::string& path, const Image& image);
 
+// Throws Error(InvalidArgument) "path: unknown image format ..." unless path ends
+// in .png or .npy (case-insensitive), so a caller can reject an output name
+// before computing what it would hold.
+void check_image_extension(const std::string& path);
+
 // Throws Error(Numeric) "<what>: NaN at row y, column x, channel c" if any value is not finite.
 void check_finite(const Image& image, const std::string& what);
 

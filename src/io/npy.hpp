@@ -1,0 +1,20 @@
+// io/npy.hpp - NumPy .npy arrays as images (SPEC.md, "Images").
+#pragma once
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "vkfuse/image.hpp"
+
+namespace vkfuse::io {
+
+// Decodes a whole .npy file held in memory: float32/float64 as is, uint8 v/255,
+// uint16 v/65535, either byte order, C or Fortran order, shape (H, W) or
+// (H, W, C) with C in {1, 3, 4} (alpha dropped). The data size is checked
+// against the header before anything is allocated. Throws Error(Format).
+Image decode_npy(const std::vector<unsigned char>& file, const std::string& path);
+
+// Writes image as little-endian float32, shape (H, W) when C = 1, else (H, W, C).
+void write_npy(std::FILE* out, const Image& image, const std::string& path);
+
+}  // namespace vkfuse::io

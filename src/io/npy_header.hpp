@@ -1,0 +1,34 @@
+// io/npy_header.hpp - the NumPy .npy header: magic, version, dict literal.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vkfuse::io {
+
+// The element types vkfuse reads (SPEC.md, "Images").
+enum class NpyKind { F4, F8, U1, U2 };
+
+struct NpyHeader {
+    NpyKind kind = NpyKind::F4;
+    bool big_endian = false;
+    bool fortran_order = false;
+    std::vector<std::uint64_t> shape;
+    std::size_t data_offset = 0;  // where the array data starts in the file
+};
+
+std::size_t item_size(NpyKind);
+std::string_view type_name(NpyKind);  // "float32", "uint8", ...
+
+// Parses the header of a .npy file (versions 1.0, 2.0, 3.0). Every length and
+// field is checked against file; anything malformed or unsupported throws
+// Error(Format) "path: <problem>". The shape is returned as written (any rank).
+NpyHeader parse_npy_header(const std::vector<unsigned char>& file, const std::string& path);
+
+// The bytes of a version 1.0 header for a little-endian float32 array of
+// shape, padded as NumPy pads it (total length a multiple of 64).
+std::string format_npy_header(const std::vector<std::uint64_t>& shape);
+
+}  // namespace vkfuse::io
