@@ -1,0 +1,95 @@
+// vkfuse fuse: read K frames, fuse them on the chosen backend, write one image.
+#include <span>
+
+#include "backend.hpp"
+#include "commands.hpp"
+#include "inputs.hpp"
+#include "vkfuse/io.hpp"
+#include "vkfuse/plan.hpp"
+#include "vkfuse/reference.hpp"
+
+namespace vkfuse::cli {
+namespace {
+
+constexpr OptionSpec kOptions[] = {
+    {"--method", "", "M", "channel-sum, brovey, laplacian or wavelet (required)"},
+    {"--levels", "", "L", "pyramid or DWT levels (default: laplacian 4, wavelet 3)"},
+    {"--wavelet", "", "W", "haar, db2, bior2.2 or bior4.4 (default bior4.4)"},
+    {"--mode", "", "MODE", "DWT border: periodization or symmetric (default periodization)"},
+    {"--base-rule", "", "R", "rule for the approximation / pyramid top: max-abs, mean, max, min (default mean)"},
+    {"--detail-rule", "", "R", "rule for detail bands / Laplacian levels (default max-abs)"},
+    kBackendOption,
+    {"-o", "--output", "OUT", "output image, .npy (float32, unclamped) or .png (8-bit, clamped) (required)"},
+};
+
+constexpr CommandSpec kSpec{
+    "fuse",
+    "fuse several frames of one scene (one per LED lighting) into one image",
+    "vkfuse fuse --method M [options] -o OUT IN...",
+    "Fuses the frames IN... (.png or .npy, all of one shape) with method M and writes\n"
+    "the result to OUT. channel-sum takes exactly 3 RGB frames (R from the first, G\n"
+    "from the second, B from the third). OUT is written only when everything succeeded.",
+    kOptions,
+    "vkfuse fuse --method wavelet --levels 3 --wavelet bior4.4 -o fused.npy red.png green.png blue.png",
+};
+
+FusionSpec fusion_spec(const Args& args) {
+    FusionSpec spec;
+    spec.method = parse_method(args.required("--method"));
+    if (auto v = args.value("--levels")) spec.levels = parse_positive_int("--levels", *v);
+    if (auto v = args.value("--wavelet")) spec.wavelet = parse_wavelet(*v);
+    if (auto v = args.value("--mode")) spec.mode = parse_wavelet_mode(*v);
+    if (auto v = args.value("--base-rule")) spec.base_rule = parse_rule(*v, "--base-rule");
+    if (auto v = args.value("--detail-rule")) spec.detail_rule = parse_rule(*v, "--detail-rule");
+    return spec;
+}
+
+Image fuse_on_cpu(const FusionSpec& spec, const std::vector<Input>& inputs) {
+    std::vector<ImageD> frames;
+    frames.reserve(inputs.size());
+    for (const Input& in : inputs) frames.push_back(convert<double>(in.image));
+    return convert<float>(fuse_reference(frames, spec));
+}
+
+Image fuse_on_vulkan(Context& context, const FusionSpec& spec, const std::vector<Input>& inputs) {
+    const Image& first = inputs.front().image;
+    PlanConfig config;
+    config.fusion = spec;
+    config.height = first.height;
+    config.width = first.width;
+    config.channels = first.channels;
+    config.frames = int(inputs.size());
+    config.sensors = 1;
+    config.input = PixelType::F32;
+    config.want_fused = true;
+    config.want_metrics = false;
+    Plan plan(context, config);
+    std::vector<FrameView> views;
+    for (const Input& in : inputs) views.push_back(FrameView::of(in.image));
+    plan.run(views);
+    return plan.fused(0);
+}
+
+int run(const Args& args) {
+    FusionSpec spec = fusion_spec(args);
+    std::string output = args.required("-o");
+    BackendChoice backend = parse_backend(args.value("--backend").value_or("auto"));
+    if (args.operands().empty()) args.usage_error("no input images");
+    io::check_image_extension(output);  // fail before the work, not after it
+
+    std::vector<Input> inputs = read_inputs(args.operands());
+    for (const Input& in : inputs) require_same_shape(in, inputs.front());
+    const Image& first = inputs.front().image;
+    validate(spec, first.height, first.width, first.channels, int(inputs.size()));
+
+    std::optional<Context> context = open_backend(backend);
+    Image fused = context ? fuse_on_vulkan(*context, spec, inputs) : fuse_on_cpu(spec, inputs);
+    io::write_image(output, fused);
+    return 0;
+}
+
+}  // namespace
+
+const Command fuse_command{kSpec, run};
+
+}  // namespace vkfuse::cli

@@ -1,0 +1,66 @@
+// vkfuse info: the Vulkan devices this machine offers and which one auto uses.
+#include <cstdio>
+#include <string>
+
+#include "commands.hpp"
+#include "vkfuse/context.hpp"
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::cli {
+namespace {
+
+constexpr CommandSpec kSpec{
+    "info",
+    "list the Vulkan devices and say which one --backend auto uses",
+    "vkfuse info",
+    "Lists every Vulkan device the loader reports (index, name, driver, type, API\n"
+    "version, and whether vkfuse can use it) and the device --backend auto picks.\n"
+    "Without a Vulkan loader or device it says so: the CPU reference path is used.",
+    {},
+    "vkfuse info",
+};
+
+void print_device(const DeviceInfo& d) {
+    std::printf("  [%d] %s\n      type %s, driver %s, Vulkan %s: %s%s\n", d.index, d.name.c_str(), d.type.c_str(),
+                d.driver.c_str(), d.api_version.c_str(), d.usable ? "usable" : "not usable: ",
+                d.usable ? "" : d.why_not.c_str());
+}
+
+// Opens the device exactly as --backend auto would, so the answer cannot drift
+// from what fuse and metrics actually do.
+void print_auto_choice() {
+    try {
+        Context context;
+        const DeviceInfo& d = context.device();
+        std::printf("--backend auto uses device [%d] %s\n", d.index, d.name.c_str());
+    } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Device) throw;
+        std::printf("--backend auto uses the CPU reference path (%s)\n", e.what());
+    }
+}
+
+int run(const Args& args) {
+    if (!args.operands().empty()) args.usage_error("unexpected operand " + args.operands().front());
+    std::vector<DeviceInfo> devices;
+    try {
+        devices = list_devices();
+    } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Device) throw;
+        std::printf("No Vulkan loader (%s): the CPU reference path will be used.\n", e.what());
+        return 0;
+    }
+    if (devices.empty()) {
+        std::printf("No Vulkan device found: the CPU reference path will be used.\n");
+        return 0;
+    }
+    std::printf("Vulkan devices:\n");
+    for (const DeviceInfo& d : devices) print_device(d);
+    print_auto_choice();
+    return 0;
+}
+
+}  // namespace
+
+const Command info_command{kSpec, run};
+
+}  // namespace vkfuse::cli

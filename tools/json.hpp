@@ -1,0 +1,14 @@
+// json.hpp - the two JSON values vkfuse metrics prints.
+#pragma once
+#include <string>
+#include <string_view>
+
+namespace vkfuse::cli {
+
+// A quoted JSON string: '"' and '\' escaped, control characters as \uXXXX.
+std::string json_string(std::string_view text);
+
+// %.17g, which round-trips every double; JSON has no NaN or Inf, so those are null.
+std::string json_number(double value);
+
+}  // namespace vkfuse::cli
