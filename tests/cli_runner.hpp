@@ -1,0 +1,62 @@
+// cli_runner.hpp - runs the built `vkfuse` binary (VKFUSE_CLI) and captures
+// its exit status, stdout and stderr. Header-only for the test_cli_* files.
+#pragma once
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "temp_dir.hpp"
+
+extern char** environ;
+
+namespace vkfuse::test {
+
+struct CliResult {
+    int status = -1;  // exit status, or 128 + signal
+    std::string out;
+    std::string err;
+
+    std::vector<std::string> err_lines() const {
+        std::vector<std::string> lines;
+        std::size_t start = 0;
+        while (start < err.size()) {
+            std::size_t end = err.find('\n', start);
+            if (end == std::string::npos) end = err.size();
+            lines.push_back(err.substr(start, end - start));
+            start = end + 1;
+        }
+        return lines;
+    }
+};
+
+inline CliResult run_cli(const std::vector<std::string>& args) {
+    TempDir capture;
+    std::string out_path = capture.file("stdout"), err_path = capture.file("stderr");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> words{VKFUSE_CLI};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    int rc = posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) throw std::runtime_error("cannot start " + std::string(VKFUSE_CLI));
+    int wstatus = 0;
+    if (waitpid(pid, &wstatus, 0) != pid) throw std::runtime_error("waitpid failed");
+    CliResult result;
+    result.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+    result.out = read_bytes(out_path);
+    result.err = read_bytes(err_path);
+    return result;
+}
+
+}  // namespace vkfuse::test
