@@ -6,22 +6,22 @@
 
 #include "core/check_finite.hpp"
 #include "core/compensated_sum.hpp"
-#include "core/plane.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/reference.hpp"
 
 namespace vkfuse {
 namespace {
 
-// Y = 0.299 R + 0.587 G + 0.114 B (C = 3), Y = I (C = 1).
-core::Plane luma(const ImageD& img) {
-    if (img.channels == 1) return core::extract_channel(img, 0);
-    core::Plane y(img.height, img.width);
-    for (int r = 0; r < img.height; ++r)
-        for (int c = 0; c < img.width; ++c)
-            y.at(r, c) = 0.299 * img.at(r, c, 0) + 0.587 * img.at(r, c, 1) + 0.114 * img.at(r, c, 2);
-    return y;
-}
+// Y = 0.299 R + 0.587 G + 0.114 B (C = 3), Y = I (C = 1). Computed on demand
+// rather than stored: at 8192 x 8192 a luma plane would add 512 MB to the
+// 1.6 GB image.
+struct Luma {
+    const ImageD& img;
+    double operator()(int y, int x) const {
+        if (img.channels == 1) return img.at(y, x, 0);
+        return 0.299 * img.at(y, x, 0) + 0.587 * img.at(y, x, 1) + 0.114 * img.at(y, x, 2);
+    }
+};
 
 // numpy.gradient along one axis of length n at index i, given f(i):
 // central difference inside, one-sided at the ends, 0 when n == 1.
@@ -33,25 +33,32 @@ double gradient(F f, int i, int n) {
     return (f(i + 1) - f(i - 1)) / 2;
 }
 
-double sharpness(const core::Plane& y) {
+double sharpness(const ImageD& img) {
+    const Luma luma{img};
     core::CompensatedSum sum;
-    for (int r = 0; r < y.height; ++r)
-        for (int c = 0; c < y.width; ++c) {
-            const double gy = gradient([&](int i) { return y.at(i, c); }, r, y.height);
-            const double gx = gradient([&](int i) { return y.at(r, i); }, c, y.width);
+    for (int r = 0; r < img.height; ++r)
+        for (int c = 0; c < img.width; ++c) {
+            const double gy = gradient([&](int i) { return luma(i, c); }, r, img.height);
+            const double gx = gradient([&](int i) { return luma(r, i); }, c, img.width);
             sum.add(std::sqrt(gx * gx + gy * gy));
         }
-    return sum.value() / double(y.data.size());
+    return sum.value() / double(img.pixels());
 }
 
 // Population standard deviation, two-pass (mean first) so it does not cancel.
-double contrast(const core::Plane& y) {
+double contrast(const ImageD& img) {
+    const Luma luma{img};
     core::CompensatedSum sum;
-    for (double v : y.data) sum.add(v);
-    const double mean = sum.value() / double(y.data.size());
+    for (int r = 0; r < img.height; ++r)
+        for (int c = 0; c < img.width; ++c) sum.add(luma(r, c));
+    const double mean = sum.value() / double(img.pixels());
     core::CompensatedSum squares;
-    for (double v : y.data) squares.add((v - mean) * (v - mean));
-    return std::sqrt(squares.value() / double(y.data.size()));
+    for (int r = 0; r < img.height; ++r)
+        for (int c = 0; c < img.width; ++c) {
+            const double d = luma(r, c) - mean;
+            squares.add(d * d);
+        }
+    return std::sqrt(squares.value() / double(img.pixels()));
 }
 
 std::string shape_text(const ImageD& f) {
@@ -75,10 +82,9 @@ Metrics metrics_reference(const ImageD& img, const ImageD* background) {
         img.data.size() != img.pixels() * img.channels)
         throw Error(ErrorKind::InvalidArgument, "image: shape " + shape_text(img) + " is not H x W x {1, 3}");
     core::require_finite(img, "image");
-    const core::Plane y = luma(img);
     Metrics m;
-    m.sharpness = sharpness(y);
-    m.contrast = contrast(y);
+    m.sharpness = sharpness(img);
+    m.contrast = contrast(img);
     if (background != nullptr) m.background_diff = background_diff(img, *background);
     return m;
 }

@@ -70,7 +70,7 @@
 //            even += delta (p-1), delta (p+1)
 //            alpha = -1.586134342059924, beta = -0.05298011857296141,
 //            gamma = 0.8829110755309333, delta = 0.4435068520439711,
-//            Ke = sqrt(2) / (1 + 2 beta (1 + 2 alpha)) (= 1.1496043988602418), Ko = -1/Ke
+//            Ke = sqrt(2) / (1 + 2 beta (1 + 2 alpha)) (= 1.1496043988602411), Ko = -1/Ke
 // Ke makes the lowpass DC gain exactly sqrt(2), like pywt's filters; the signs of
 // Ko make interior coefficients equal pywt's periodization coefficients (haar,
 // bior2.2 exactly; bior4.4 to ~5e-13, the precision of pywt's tabulated

@@ -2,12 +2,13 @@
 // place on one line with whole-sample symmetric (reflect-101) neighbours. The
 // step tables are data so the GPU engine can run the same steps; wavelet.hpp
 // documents them.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
 #include "core/border.hpp"
-#include "core/wavelet.hpp"
+#include "core/wavelet_axis.hpp"
 
 namespace vkfuse::core {
 namespace {
@@ -54,14 +55,56 @@ LiftingScheme bior44() {
             -1.0 / ke};
 }
 
-// x[q] += sign * sum_t coef[t] x[R(q + offset[t])] for every q of the step's parity.
-void apply(const LiftingStep& s, std::vector<double>& x, double sign) {
-    const int n = int(x.size());
-    for (int q = s.parity; q < n; q += 2) {
-        double sum = 0;
-        for (int t = 0; t < s.taps; ++t) sum += s.coef[t] * x[reflect101(q + s.offset[t], n)];
-        x[q] += sign * sum;
+int axis_length(const Plane& p, int axis) { return axis == 0 ? p.height : p.width; }
+
+// x[q] += sign * sum_t coef[t] x[R(q + offset[t])] for every q of the step's
+// parity, on every line along the axis. Along axis 0 the lines are columns,
+// so whole rows are combined (contiguous inner loop).
+void apply(const LiftingStep& s, Plane& p, int axis, double sign) {
+    const int n = axis_length(p, axis);
+    if (axis == 1) {
+        for (int y = 0; y < p.height; ++y)
+            for (int q = s.parity; q < n; q += 2) {
+                double sum = 0;
+                for (int t = 0; t < s.taps; ++t) sum += s.coef[t] * p.at(y, reflect101(q + s.offset[t], n));
+                p.at(y, q) += sign * sum;
+            }
+        return;
     }
+    std::vector<double> sum(std::size_t(p.width));
+    for (int q = s.parity; q < n; q += 2) {
+        std::fill(sum.begin(), sum.end(), 0.0);
+        for (int t = 0; t < s.taps; ++t) {
+            const double* row = &p.data[std::size_t(reflect101(q + s.offset[t], n)) * p.width];
+            for (int x = 0; x < p.width; ++x) sum[x] += s.coef[t] * row[x];
+        }
+        double* dst = &p.data[std::size_t(q) * p.width];
+        for (int x = 0; x < p.width; ++x) dst[x] += sign * sum[x];
+    }
+}
+
+// Samples of one parity along the axis, each multiplied by scale.
+Plane take(const Plane& p, int axis, int parity, double scale) {
+    const int n = (axis_length(p, axis) + 1 - parity) / 2;
+    Plane out = axis == 0 ? Plane(n, p.width) : Plane(p.height, n);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            out.at(y, x) = scale * (axis == 0 ? p.at(2 * y + parity, x) : p.at(y, 2 * x + parity));
+    return out;
+}
+
+// The inverse of take: interleaves band (divided by scale) into p.
+void put(const Plane& band, Plane& p, int axis, int parity, double scale) {
+    for (int y = 0; y < band.height; ++y)
+        for (int x = 0; x < band.width; ++x)
+            (axis == 0 ? p.at(2 * y + parity, x) : p.at(y, 2 * x + parity)) = band.at(y, x) / scale;
+}
+
+// A 1 x n plane holding a line, so the 1-D transforms reuse the plane code.
+Plane row_plane(std::span<const double> v) {
+    Plane p(1, int(v.size()));
+    std::copy(v.begin(), v.end(), p.data.begin());
+    return p;
 }
 
 }  // namespace
@@ -77,34 +120,41 @@ const LiftingScheme& lifting_scheme(Wavelet w) {
     throw std::invalid_argument("lifting_scheme: invalid wavelet enumerator");
 }
 
+Bands split_axis_lifting(const Plane& p, int axis, const LiftingScheme& ls) {
+    if (axis_length(p, axis) == 1) return {p, axis == 0 ? Plane(0, p.width) : Plane(p.height, 0)};  // pass through
+    Plane work = p;
+    for (int s = 0; s < ls.steps; ++s) apply(ls.step[s], work, axis, +1.0);
+    return {take(work, axis, 0, ls.scale_even), take(work, axis, 1, ls.scale_odd)};
+}
+
+Plane merge_axis_lifting(const Plane& lo, const Plane& hi, int axis, const LiftingScheme& ls) {
+    const int nlo = axis_length(lo, axis), nhi = axis_length(hi, axis), n = nlo + nhi;
+    const bool across_ok = axis == 0 ? lo.width == hi.width : lo.height == hi.height;
+    if (!across_ok || nlo != (n + 1) / 2) throw std::logic_error("waverec2: lifting bands differ in shape");
+    if (n == 1) return lo;
+    Plane work = axis == 0 ? Plane(n, lo.width) : Plane(lo.height, n);
+    put(lo, work, axis, 0, ls.scale_even);
+    put(hi, work, axis, 1, ls.scale_odd);
+    for (int s = ls.steps - 1; s >= 0; --s) apply(ls.step[s], work, axis, -1.0);
+    return work;
+}
+
 void dwt_lifting(std::span<const double> x, const LiftingScheme& ls, std::span<double> approx,
                  std::span<double> detail) {
     const std::size_t n = x.size();
     if (n < 1 || approx.size() != (n + 1) / 2 || detail.size() != n / 2)
         throw std::invalid_argument("dwt_lifting: bad lengths");
-    if (n == 1) {  // nothing to pair the sample with: it passes through
-        approx[0] = x[0];
-        return;
-    }
-    std::vector<double> line(x.begin(), x.end());
-    for (int s = 0; s < ls.steps; ++s) apply(ls.step[s], line, +1.0);
-    for (std::size_t i = 0; i < approx.size(); ++i) approx[i] = line[2 * i] * ls.scale_even;
-    for (std::size_t i = 0; i < detail.size(); ++i) detail[i] = line[2 * i + 1] * ls.scale_odd;
+    const Bands b = split_axis_lifting(row_plane(x), 1, ls);
+    std::copy(b.lo.data.begin(), b.lo.data.end(), approx.begin());
+    std::copy(b.hi.data.begin(), b.hi.data.end(), detail.begin());
 }
 
 void idwt_lifting(std::span<const double> approx, std::span<const double> detail, const LiftingScheme& ls,
                   std::span<double> out) {
     const std::size_t n = approx.size() + detail.size();
     if (approx.size() != (n + 1) / 2 || out.size() != n) throw std::invalid_argument("idwt_lifting: bad lengths");
-    if (n == 1) {
-        out[0] = approx[0];
-        return;
-    }
-    std::vector<double> line(n);
-    for (std::size_t i = 0; i < approx.size(); ++i) line[2 * i] = approx[i] / ls.scale_even;
-    for (std::size_t i = 0; i < detail.size(); ++i) line[2 * i + 1] = detail[i] / ls.scale_odd;
-    for (int s = ls.steps - 1; s >= 0; --s) apply(ls.step[s], line, -1.0);
-    for (std::size_t i = 0; i < n; ++i) out[i] = line[i];
+    const Plane line = merge_axis_lifting(row_plane(approx), row_plane(detail), 1, ls);
+    std::copy(line.data.begin(), line.data.end(), out.begin());
 }
 
 }  // namespace vkfuse::core

@@ -1,35 +1,56 @@
-// pywt's MODE_PERIODIZATION DWT and IDWT of one line, in gather form (the
-// formulas and their derivation from pywt's C loops are in wavelet.hpp).
+// pywt's MODE_PERIODIZATION DWT and IDWT as gather tables (the formulas and
+// their derivation from pywt's C loops are in wavelet.hpp). The tables are
+// built once per line length; rows and columns then only multiply and add.
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
-#include "core/wavelet.hpp"
+#include "core/line_gather.hpp"
+#include "core/wavelet_axis.hpp"
 
 namespace vkfuse::core {
 namespace {
 
 int mod(int a, int m) { return ((a % m) + m) % m; }
 
+// a[o] or d[o] = sum_j filter[j] * xe(mod(2o + F/2 - j, Np)), xe(t) = x[min(t, n-1)].
+LineGather analysis(const std::array<double, 10>& filter, int length, int n) {
+    const int padded = n + n % 2;  // odd lines repeat their last sample once
+    LineGather g{(n + 1) / 2, length, {}, {}};
+    for (int o = 0; o < g.outputs; ++o)
+        for (int j = 0; j < length; ++j) {
+            g.index.push_back(std::min(mod(2 * o + length / 2 - j, padded), n - 1));
+            g.weight.push_back(filter[j]);
+        }
+    return g;
+}
+
+// y[i] += sum_j filter[2j + p] * c[mod(m + F/4 - j, n)], q = mod(i - s, 2n), m = q / 2, p = q % 2.
+LineGather synthesis(const std::array<double, 10>& filter, int length, int n) {
+    const int half = length / 2, start = length / 4;
+    const int shift = half % 2 == 0 ? 1 : 0;  // pywt's one-sample output shift (db2)
+    LineGather g{2 * n, half, {}, {}};
+    for (int i = 0; i < 2 * n; ++i) {
+        const int q = mod(i - shift, 2 * n), m = q / 2, p = q % 2;
+        for (int j = 0; j < half; ++j) {
+            g.index.push_back(mod(m + start - j, n));
+            g.weight.push_back(filter[2 * j + p]);
+        }
+    }
+    return g;
+}
+
+int axis_length(const Plane& p, int axis) { return axis == 0 ? p.height : p.width; }
+
 }  // namespace
 
 void dwt_periodization(std::span<const double> x, const FilterBank& fb, std::span<double> approx,
                        std::span<double> detail) {
     const int n = int(x.size());
-    const int m = (n + 1) / 2;
-    if (n < 1 || int(approx.size()) != m || int(detail.size()) != m)
+    if (n < 1 || approx.size() != std::size_t(n + 1) / 2 || detail.size() != approx.size())
         throw std::invalid_argument("dwt_periodization: bad lengths");
-    const int padded = n + n % 2;  // odd lines repeat their last sample once
-    const int f = fb.length;
-    for (int o = 0; o < m; ++o) {
-        double a = 0, d = 0;
-        for (int j = 0; j < f; ++j) {
-            const double v = x[std::min(mod(2 * o + f / 2 - j, padded), n - 1)];
-            a += fb.dec_lo[j] * v;
-            d += fb.dec_hi[j] * v;
-        }
-        approx[o] = a;
-        detail[o] = d;
-    }
+    gather_line(analysis(fb.dec_lo, fb.length, n), x, approx, false);
+    gather_line(analysis(fb.dec_hi, fb.length, n), x, detail, false);
 }
 
 void idwt_periodization(std::span<const double> approx, std::span<const double> detail, const FilterBank& fb,
@@ -37,19 +58,23 @@ void idwt_periodization(std::span<const double> approx, std::span<const double> 
     const int n = int(approx.size());
     if (n < 1 || int(detail.size()) != n || int(out.size()) != 2 * n)
         throw std::invalid_argument("idwt_periodization: bad lengths");
-    const int half = fb.length / 2;
-    const int start = fb.length / 4;
-    const int shift = half % 2 == 0 ? 1 : 0;  // pywt's one-sample output shift (db2)
-    for (int i = 0; i < 2 * n; ++i) {
-        const int q = mod(i - shift, 2 * n);
-        const int m = q / 2, p = q % 2;
-        double sum = 0;
-        for (int j = 0; j < half; ++j) {
-            const int k = mod(m + start - j, n);
-            sum += fb.rec_lo[2 * j + p] * approx[k] + fb.rec_hi[2 * j + p] * detail[k];
-        }
-        out[i] = sum;
-    }
+    gather_line(synthesis(fb.rec_lo, fb.length, n), approx, out, false);
+    gather_line(synthesis(fb.rec_hi, fb.length, n), detail, out, true);
+}
+
+Bands split_axis_periodization(const Plane& p, int axis, const FilterBank& fb) {
+    const int n = axis_length(p, axis);
+    return {gather_axis(p, axis, analysis(fb.dec_lo, fb.length, n)),
+            gather_axis(p, axis, analysis(fb.dec_hi, fb.length, n))};
+}
+
+Plane merge_axis_periodization(const Plane& lo, const Plane& hi, int axis, const FilterBank& fb) {
+    const int n = axis_length(lo, axis);
+    if (!lo.same_shape(hi))
+        throw std::logic_error("waverec2: periodization bands differ in shape");
+    Plane out = gather_axis(lo, axis, synthesis(fb.rec_lo, fb.length, n));
+    gather_axis_add(hi, axis, synthesis(fb.rec_hi, fb.length, n), out);
+    return out;
 }
 
 }  // namespace vkfuse::core
