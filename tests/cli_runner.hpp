@@ -33,7 +33,27 @@ struct CliResult {
     }
 };
 
-inline CliResult run_cli(const std::vector<std::string>& args) {
+// The current environment with extra "NAME=value" entries replacing any of the same name.
+inline std::vector<std::string> environment_with(const std::vector<std::string>& extra) {
+    std::vector<std::string> env;
+    for (char** e = environ; *e; ++e) {
+        std::string entry(*e);
+        bool replaced = false;
+        for (const std::string& x : extra) replaced = replaced || entry.rfind(x.substr(0, x.find('=') + 1), 0) == 0;
+        if (!replaced) env.push_back(entry);
+    }
+    env.insert(env.end(), extra.begin(), extra.end());
+    return env;
+}
+
+inline std::vector<char*> c_strings(std::vector<std::string>& words) {
+    std::vector<char*> out;
+    for (std::string& w : words) out.push_back(w.data());
+    out.push_back(nullptr);
+    return out;
+}
+
+inline CliResult run_cli(const std::vector<std::string>& args, const std::vector<std::string>& extra_env = {}) {
     TempDir capture;
     std::string out_path = capture.file("stdout"), err_path = capture.file("stderr");
     posix_spawn_file_actions_t actions;
@@ -43,11 +63,10 @@ inline CliResult run_cli(const std::vector<std::string>& args) {
     posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     std::vector<std::string> words{VKFUSE_CLI};
     words.insert(words.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& w : words) argv.push_back(w.data());
-    argv.push_back(nullptr);
+    std::vector<std::string> env = environment_with(extra_env);
+    std::vector<char*> argv = c_strings(words), envp = c_strings(env);
     pid_t pid = 0;
-    int rc = posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ);
+    int rc = posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw std::runtime_error("cannot start " + std::string(VKFUSE_CLI));
     int wstatus = 0;
