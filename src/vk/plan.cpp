@@ -112,17 +112,18 @@ void Plan::Impl::submit_and_wait() {
     si.pCommandBuffers = &cmd;
     vk::check(api.vkResetFences(ctx.device, 1, &fence), "vkResetFences");
     vk::check(api.vkQueueSubmit(ctx.queue, 1, &si, fence), "vkQueueSubmit");
+    in_flight = true;
     vk::check(api.vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()),
               "vkWaitForFences");
+    in_flight = false;
 }
 
 void Plan::Impl::release() {
     if (!ctx.device) return;
     auto& api = *ctx.api;
-    if (fence) {
-        api.vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max());
-        api.vkDestroyFence(ctx.device, fence, nullptr);
-    }
+    // Only a submit whose wait failed (device lost) can still be pending.
+    if (in_flight) api.vkDeviceWaitIdle(ctx.device);
+    if (fence) api.vkDestroyFence(ctx.device, fence, nullptr);
     if (queries) api.vkDestroyQueryPool(ctx.device, queries, nullptr);
     if (pool) api.vkDestroyCommandPool(ctx.device, pool, nullptr);  // frees cmd
     fence = VK_NULL_HANDLE;
@@ -250,6 +251,12 @@ namespace vkfuse::vk {
 
 VkDeviceAddress GraphBuilder::floats(std::uint64_t count) {
     buffers.emplace_back(ctx, count * sizeof(float), MemoryUse::Device);
+    return buffers.back().address();
+}
+
+VkDeviceAddress GraphBuilder::constants(const std::vector<float>& values) {
+    buffers.emplace_back(ctx, values.size() * sizeof(float), MemoryUse::Upload);
+    std::memcpy(buffers.back().mapped(), values.data(), values.size() * sizeof(float));
     return buffers.back().address();
 }
 

@@ -19,6 +19,8 @@ struct GraphBuilder {
     std::uint32_t planes_out() const { return std::uint32_t(cfg.sensors * cfg.channels); }
     // A new device buffer of count floats; returns its device address.
     VkDeviceAddress floats(std::uint64_t count);
+    // A small host-written buffer holding values (filter taps, ...); its address.
+    VkDeviceAddress constants(const std::vector<float>& values);
 };
 
 // Records the fusion of the unpacked input planes (S*K*C planes of H x W,
@@ -53,6 +55,7 @@ struct Plan::Impl {
     std::size_t totals_offset = 0;  // bytes into readback
     std::vector<bool> background_set;
     bool has_run = false;
+    bool in_flight = false;  // submitted and not yet waited for
     std::vector<Image> fused;  // filled lazily from readback after a run
     std::vector<bool> fused_fresh;
 

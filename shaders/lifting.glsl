@@ -1,0 +1,46 @@
+// Whole-sample symmetric lifting on one line held in split layout (even
+// positions, the approximation, at [0, half_len); odd positions, the detail,
+// at [half_len, n)). Positions are the line's natural ones, so the steps read
+// exactly as core/wavelet.hpp states them:
+//   x[q] += c0 x[R(q + o0, n)] + c1 x[R(q + o1, n)] for every q of one parity,
+// R = reflect101, which keeps parity, so a step never reads what it writes.
+// The scheme sits in the filters buffer from float 40 on:
+//   [steps, Ke, Ko, then per step: parity, taps, c0, c1, o0, o1].
+const uint SCHEME = 40u;
+
+// Where a line's coefficients live: buffer plus strides.
+struct LineView {
+    uint plane_stride;
+    int line_stride;
+    int elem_stride;
+};
+
+uint lift_slot(LineView v, uint plane, int line, int pos) {
+    int i = (pos & 1) == 0 ? pos >> 1 : pc.half_len + (pos >> 1);
+    return plane * v.plane_stride + uint(line * v.line_stride + i * v.elem_stride);
+}
+
+// sign = +1 applies step s, -1 undoes it.
+void lift_step(Floats coef, LineView v, uint plane, int line, int n, int s, float sign) {
+    uint base = SCHEME + 3u + uint(s) * 6u;
+    int parity = int(pc.filters.v[base]);
+    int taps = int(pc.filters.v[base + 1u]);
+    float c0 = pc.filters.v[base + 2u], c1 = pc.filters.v[base + 3u];
+    int o0 = int(pc.filters.v[base + 4u]), o1 = int(pc.filters.v[base + 5u]);
+    for (int q = parity; q < n; q += 2) {
+        float update = c0 * coef.v[lift_slot(v, plane, line, reflect101(q + o0, n))];
+        if (taps > 1) update += c1 * coef.v[lift_slot(v, plane, line, reflect101(q + o1, n))];
+        uint at = lift_slot(v, plane, line, q);
+        coef.v[at] = coef.v[at] + sign * update;
+    }
+}
+
+// Multiplies (forward) or divides (inverse) even positions by Ke, odd by Ko.
+void lift_scale(Floats coef, LineView v, uint plane, int line, int n, bool forward) {
+    float ke = pc.filters.v[SCHEME + 1u], ko = pc.filters.v[SCHEME + 2u];
+    for (int p = 0; p < n; ++p) {
+        uint at = lift_slot(v, plane, line, p);
+        float k = (p & 1) == 0 ? ke : ko;
+        coef.v[at] = forward ? coef.v[at] * k : coef.v[at] / k;
+    }
+}

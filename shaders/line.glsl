@@ -1,0 +1,31 @@
+// 1-D transforms along rows or columns of a set of planes. A "line" is a row
+// (elements 1 apart) or a column (elements row_stride apart); the same kernel
+// serves both axes through these strides.
+layout(push_constant, std430) uniform Push {
+    Floats src;
+    Floats dst;
+    Floats filters;   // dec_lo, dec_hi, rec_lo, rec_hi: 10 floats each
+    int n;            // samples per input line (forward) / output samples kept (inverse)
+    int half_len;     // coefficients in the low half; the high half starts here
+    int high_len;     // coefficients in the high half
+    int lines;
+    int src_line_stride;
+    int src_elem_stride;
+    uint src_plane_stride;
+    int dst_line_stride;
+    int dst_elem_stride;
+    uint dst_plane_stride;
+    uint x_is_line;   // 1: invocation x walks lines (column passes, for coalescing)
+    int wavelet;      // filter length (periodization) or wavelet id (lifting)
+} pc;
+
+uint src_at(uint plane, int line, int i) {
+    return plane * pc.src_plane_stride + uint(line * pc.src_line_stride + i * pc.src_elem_stride);
+}
+uint dst_at(uint plane, int line, int i) {
+    return plane * pc.dst_plane_stride + uint(line * pc.dst_line_stride + i * pc.dst_elem_stride);
+}
+int positive_mod(int a, int m) {
+    int r = a % m;
+    return r < 0 ? r + m : r;
+}

@@ -1,0 +1,189 @@
+// Wavelet fusion: per level, a row pass and a column pass of the 1-D DWT over
+// every frame's planes, fusion of that level's coefficients across frames,
+// then the inverse from the coarsest level down. Periodization uses pywt's
+// convolution formulas (dwt_forward/dwt_inverse.comp), symmetric mode the
+// lifting schemes (lift_forward/lift_inverse.comp), both from core/wavelet.hpp.
+//
+// Level l splits A_l (h x w) into a block D_l of bh x bw holding the
+// approximation (top-left ch x cw, which is A_{l+1}) and the detail bands.
+// Periodization blocks are 2ch x 2cw (odd sizes padded as pywt does);
+// symmetric blocks are exactly h x w.
+#include <vector>
+
+#include "core/wavelet.hpp"
+#include "vk/plan_impl.hpp"
+
+namespace vkfuse::vk {
+namespace {
+
+// A set of planes as a strided 2-D view.
+struct PlaneSet {
+    VkDeviceAddress addr = 0;
+    int row_stride = 0;
+    std::uint32_t plane_stride = 0;
+};
+
+struct LevelShape {
+    int h, w;    // the approximation this level splits
+    int ch, cw;  // its approximation (next level's input)
+    int bh, bw;  // coefficient block
+};
+
+struct LineSpec {  // one 1-D pass: `lines` lines of n samples
+    int n, half_len, high_len, lines;
+    bool along_rows;  // true: lines are rows; false: columns
+};
+
+std::vector<float> filter_constants(Wavelet w) {
+    std::vector<float> c(40 + 3 + 24, 0.0f);
+    const auto& fb = core::filter_bank(w);
+    for (int j = 0; j < 10; ++j) {
+        c[std::size_t(j)] = float(fb.dec_lo[std::size_t(j)]);
+        c[std::size_t(10 + j)] = float(fb.dec_hi[std::size_t(j)]);
+        c[std::size_t(20 + j)] = float(fb.rec_lo[std::size_t(j)]);
+        c[std::size_t(30 + j)] = float(fb.rec_hi[std::size_t(j)]);
+    }
+    const auto& ls = core::lifting_scheme(w);
+    c[40] = float(ls.steps);
+    c[41] = float(ls.scale_even);
+    c[42] = float(ls.scale_odd);
+    for (int s = 0; s < ls.steps; ++s) {
+        const auto& st = ls.step[std::size_t(s)];
+        float* o = &c[std::size_t(43 + 6 * s)];
+        o[0] = float(st.parity);
+        o[1] = float(st.taps);
+        o[2] = float(st.coef[0]);
+        o[3] = float(st.coef[1]);
+        o[4] = float(st.offset[0]);
+        o[5] = float(st.offset[1]);
+    }
+    return c;
+}
+
+class WaveletGraph {
+public:
+    WaveletGraph(GraphBuilder& g) : g_(g), spec_(g.cfg.fusion) {
+        periodization_ = spec_.mode == WaveletMode::Periodization;
+        filters_ = g.constants(filter_constants(spec_.wavelet));
+        int h = g.cfg.height, w = g.cfg.width;
+        for (int l = 0; l < spec_.effective_levels(); ++l) {
+            LevelShape s{h, w, (h + 1) / 2, (w + 1) / 2, 0, 0};
+            s.bh = periodization_ ? 2 * s.ch : h;
+            s.bw = periodization_ ? 2 * s.cw : w;
+            shapes_.push_back(s);
+            h = s.ch;
+            w = s.cw;
+        }
+    }
+
+    VkDeviceAddress record(VkDeviceAddress input) {
+        const auto& top = shapes_.front();
+        const VkDeviceAddress scratch = g_.floats(std::uint64_t(g_.planes_in()) * top.h * top.bw);
+        std::vector<PlaneSet> fused;
+        PlaneSet a{input, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
+        const int L = int(shapes_.size());
+        for (int l = 0; l < L; ++l) {
+            const auto& s = shapes_[std::size_t(l)];
+            PlaneSet t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
+            PlaneSet d{g_.floats(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
+            forward(a, t, {s.w, s.cw, high(s.w, s.cw), s.h, true}, g_.planes_in());
+            forward(t, d, {s.h, s.ch, high(s.h, s.ch), s.bw, false}, g_.planes_in());
+            PlaneSet f{g_.floats(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
+            fuse(d, f, s, l == L - 1);
+            fused.push_back(f);
+            a = {d.addr, s.bw, d.plane_stride};
+        }
+        g_.rec.mark("dwt_and_fuse");
+        const VkDeviceAddress out_addr = g_.floats(std::uint64_t(g_.planes_out()) * g_.cfg.width * g_.cfg.height);
+        const VkDeviceAddress inv_scratch = g_.floats(std::uint64_t(g_.planes_out()) * top.h * top.bw);
+        for (int l = L - 1; l >= 0; --l) {
+            const auto& s = shapes_[std::size_t(l)];
+            PlaneSet u{inv_scratch, s.bw, std::uint32_t(s.h * s.bw)};
+            PlaneSet dst = l > 0 ? fused[std::size_t(l) - 1]
+                                 : PlaneSet{out_addr, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
+            inverse(fused[std::size_t(l)], u, {s.h, s.ch, high(s.h, s.ch), s.bw, false});
+            inverse(u, dst, {s.w, s.cw, high(s.w, s.cw), s.h, true});
+        }
+        g_.rec.mark("idwt");
+        return out_addr;
+    }
+
+private:
+    GraphBuilder& g_;
+    const FusionSpec& spec_;
+    bool periodization_ = true;
+    VkDeviceAddress filters_ = 0;
+    std::vector<LevelShape> shapes_;
+
+    int high(int n, int half) const { return periodization_ ? half : n - half; }
+
+    PushConstants line_push(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls) const {
+        // Along rows: next line is a row below, next sample is adjacent.
+        // Along columns: next line is adjacent, next sample is a row below.
+        const int s_line = ls.along_rows ? src.row_stride : 1, s_elem = ls.along_rows ? 1 : src.row_stride;
+        const int d_line = ls.along_rows ? dst.row_stride : 1, d_elem = ls.along_rows ? 1 : dst.row_stride;
+        return PushConstants()
+            .ptr(src.addr)
+            .ptr(dst.addr)
+            .ptr(filters_)
+            .i32(ls.n)
+            .i32(ls.half_len)
+            .i32(ls.high_len)
+            .i32(ls.lines)
+            .i32(s_line)
+            .i32(s_elem)
+            .u32(src.plane_stride)
+            .i32(d_line)
+            .i32(d_elem)
+            .u32(dst.plane_stride)
+            .u32(ls.along_rows ? 0 : 1)
+            .i32(periodization_ ? core::filter_bank(spec_.wavelet).length : 0);
+    }
+
+    void dispatch_line(const char* conv, const char* lift, const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls,
+                       int samples, std::uint32_t planes) {
+        const auto push = line_push(src, dst, ls);
+        if (!periodization_) {
+            g_.rec.dispatch(lift, push, groups(std::uint32_t(ls.lines), 64), 1, planes);
+        } else if (ls.along_rows) {
+            g_.rec.dispatch(conv, push, groups(std::uint32_t(samples), 16), groups(std::uint32_t(ls.lines), 16), planes);
+        } else {
+            g_.rec.dispatch(conv, push, groups(std::uint32_t(ls.lines), 16), groups(std::uint32_t(samples), 16), planes);
+        }
+    }
+
+    void forward(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls, std::uint32_t planes) {
+        dispatch_line("dwt_forward", "lift_forward", src, dst, ls, ls.half_len, planes);
+    }
+    void inverse(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls) {
+        dispatch_line("dwt_inverse", "lift_inverse", src, dst, ls, ls.n, g_.planes_out());
+    }
+
+    void fuse(const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s, bool deepest) {
+        g_.rec.dispatch("rule_fuse",
+                        PushConstants()
+                            .ptr(coeffs.addr)
+                            .ptr(coeffs.addr)
+                            .ptr(out.addr)
+                            .i32(s.bw)
+                            .i32(s.bh)
+                            .i32(s.bw)
+                            .u32(coeffs.plane_stride)
+                            .i32(0)
+                            .i32(0)
+                            .u32(std::uint32_t(g_.cfg.frames))
+                            .u32(std::uint32_t(g_.cfg.channels))
+                            .u32(std::uint32_t(spec_.base_rule))
+                            .u32(std::uint32_t(spec_.detail_rule))
+                            .i32(deepest ? s.cw : 0)
+                            .i32(deepest ? s.ch : 0)
+                            .u32(0),
+                        groups(std::uint32_t(s.bw), 16), groups(std::uint32_t(s.bh), 16), g_.planes_out());
+    }
+};
+
+}  // namespace
+
+VkDeviceAddress record_wavelet(GraphBuilder& g, VkDeviceAddress input) { return WaveletGraph(g).record(input); }
+
+}  // namespace vkfuse::vk
