@@ -1,6 +1,7 @@
 // `--backend vulkan` end to end: the GPU path must agree with the CPU path
 // (SPEC.md tolerances: fused 1e-5 absolute, metrics 1e-5 relative). Needs a
-// Vulkan device (lavapipe in CI).
+// Vulkan device (lavapipe in CI). Runs with the validation layer on
+// (VKFUSE_VALIDATION=1): any message lands on stderr, which must stay empty.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,8 @@
 
 namespace vkfuse::test {
 namespace {
+
+const std::vector<std::string> kValidation{"VKFUSE_VALIDATION=1"};
 
 struct VkCase {
     std::string name;
@@ -42,7 +45,7 @@ Image fuse_with(const TempDir& dir, const VkCase& c, const std::vector<std::stri
     std::vector<std::string> args{"fuse", "--backend", backend, "-o", out};
     args.insert(args.end(), c.options.begin(), c.options.end());
     args.insert(args.end(), inputs.begin(), inputs.end());
-    CliResult r = run_cli(args);
+    CliResult r = run_cli(args, kValidation);
     EXPECT_EQ(r.status, 0) << backend << ": " << r.err;
     EXPECT_EQ(r.err, "");
     return r.status == 0 ? io::read_image(out) : Image();
@@ -82,7 +85,7 @@ void expect_metrics_agree(const std::vector<std::string>& args) {
     std::vector<std::string> cpu_args{"metrics", "--backend", "cpu"}, gpu_args{"metrics", "--backend", "vulkan"};
     cpu_args.insert(cpu_args.end(), args.begin(), args.end());
     gpu_args.insert(gpu_args.end(), args.begin(), args.end());
-    CliResult cpu = run_cli(cpu_args), gpu = run_cli(gpu_args);
+    CliResult cpu = run_cli(cpu_args), gpu = run_cli(gpu_args, kValidation);
     ASSERT_EQ(cpu.status, 0) << cpu.err;
     ASSERT_EQ(gpu.status, 0) << gpu.err;
     EXPECT_EQ(gpu.err, "");
