@@ -27,7 +27,8 @@ struct ContextOptions {
 };
 
 // Owns a VkInstance, one VkDevice and its compute queue. Cheap to move, not
-// copyable; several Contexts may live in one process. Throws Error(Device)
+// copyable; several Contexts may live in one process, and one Context may be
+// shared by threads (pipeline creation and queue submission are locked). Throws Error(Device)
 // when no loader, no device, or no usable device exists.
 class Context {
 public:

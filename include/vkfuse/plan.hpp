@@ -35,8 +35,10 @@ struct KernelTime {
 // Everything for one (method, shape, K, S, metrics) is created here once:
 // pipelines, device buffers and one command buffer recorded at construction.
 // run() copies the frames into the upload buffer, submits that command buffer
-// once, waits, and exposes what was asked for. Not thread-safe; one Plan per
-// thread. Throws Error on invalid configuration or device failure.
+// once, waits, and exposes what was asked for. A Plan is used by one thread at
+// a time; plans of one Context may run on different threads at once. The
+// Context must outlive its plans. Throws Error on invalid configuration or
+// device failure.
 class Plan {
 public:
     Plan(Context& context, const PlanConfig& config);

@@ -26,6 +26,8 @@ struct Context::Impl {
     bool timestamps = false;  // queue supports timestamp queries
     VkPipelineLayout layout = VK_NULL_HANDLE;  // push constants only, shared by all kernels
 
+    std::mutex queue_mutex;  // vkQueueSubmit needs external synchronisation across threads
+
     std::function<void(const std::string&)> on_validation_message;
     std::atomic<std::uint64_t> validation_messages{0};
 

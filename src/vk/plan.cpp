@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 
 #include "vk/plan_impl.hpp"
 #include "vkfuse/error.hpp"
@@ -111,7 +112,10 @@ void Plan::Impl::submit_and_wait() {
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd;
     vk::check(api.vkResetFences(ctx.device, 1, &fence), "vkResetFences");
-    vk::check(api.vkQueueSubmit(ctx.queue, 1, &si, fence), "vkQueueSubmit");
+    {
+        std::lock_guard lock(ctx.queue_mutex);  // plans of one context may run on several threads
+        vk::check(api.vkQueueSubmit(ctx.queue, 1, &si, fence), "vkQueueSubmit");
+    }
     in_flight = true;
     vk::check(api.vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()),
               "vkWaitForFences");
