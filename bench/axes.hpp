@@ -1,0 +1,50 @@
+// The axes of the benchmark matrix and their names on the command line.
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vkfuse/fusion.hpp"
+
+namespace vkfuse::bench {
+
+enum class Backend { Cpu, Vulkan };
+
+// Only fp32 exists: the engine has no fp16 storage yet (SPEC.md's optional
+// reduced-precision modes); the axis is here so results say what they measured.
+enum class Precision { Fp32 };
+
+// A fusion method, and for Method::Wavelet the wavelet family.
+struct MethodVariant {
+    Method method = Method::Wavelet;
+    Wavelet wavelet = Wavelet::Bior44;  // ignored unless method == Wavelet
+    bool operator==(const MethodVariant&) const = default;
+};
+
+struct Size {
+    int width = 0;
+    int height = 0;
+    bool operator==(const Size&) const = default;
+    double pixels() const { return double(width) * height; }
+};
+
+std::string_view to_string(Backend);
+std::string_view to_string(Precision);
+// "channel-sum", "laplacian", "wavelet/bior4.4".
+std::string label(const MethodVariant&);
+// "320x240", with the common name where there is one: "QVGA".
+std::string size_name(Size);
+std::string short_size_name(Size);  // "QVGA", "VGA", "1080p", "4096^2", else "WxH"
+
+// Parsers throw UsageError (options.hpp) naming the option and the bad value.
+Backend parse_backend(std::string_view option, std::string_view text);
+Precision parse_precision(std::string_view option, std::string_view text);
+Size parse_size(std::string_view option, std::string_view text);  // "WxH" or qvga, vga, 1080p, 4k
+
+// Every value each axis can take, in the order the matrix walks them.
+std::vector<MethodVariant> all_method_variants();
+const std::vector<Size>& all_sizes();
+const std::vector<int>& all_frame_counts();
+const std::vector<int>& all_sensor_counts();
+
+}  // namespace vkfuse::bench

@@ -1,0 +1,27 @@
+// Measuring one cell on one backend: the timed cycle is what a sensor loop
+// does every cycle (fuse the K frames of every sensor, compute the three
+// metrics, bring the fused images to the host), then the error of the last
+// cycle's results against the reference.
+#pragma once
+#include <vector>
+
+#include "expected.hpp"
+#include "inputs.hpp"
+#include "result.hpp"
+#include "vkfuse/context.hpp"
+
+namespace vkfuse::bench {
+
+inline constexpr const char* kCpuDevice = "CPU reference (double, 1 thread)";
+
+// The double-precision CPU reference (vkfuse::fuse_reference and
+// metrics_reference, as `vkfuse --backend cpu` runs them), sensor after sensor.
+CellResult measure_cpu(const Cell& cell, const Inputs& in, const std::vector<Expected>& expected,
+                       const RunPolicy& policy);
+
+// One vkfuse::Plan for all S sensors. With profile, Plan::profile()'s stage
+// times are collected from every timed run. Throws vkfuse::Error on device failure.
+CellResult measure_vulkan(Context& context, const Cell& cell, const Inputs& in, const std::vector<Expected>& expected,
+                          const RunPolicy& policy, bool profile);
+
+}  // namespace vkfuse::bench

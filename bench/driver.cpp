@@ -1,0 +1,162 @@
+#include "driver.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "backends.hpp"
+#include "matrix.hpp"
+#include "memory.hpp"
+#include "peer.hpp"
+#include "report_json.hpp"
+#include "report_summary.hpp"
+#include "report_svg.hpp"
+#include "report_table.hpp"
+#include "usage_error.hpp"
+#include "vk/copy_bandwidth.hpp"
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::bench {
+namespace {
+
+// What the run found once, before the first cell.
+struct Environment {
+    std::optional<Context> vulkan;
+    std::string no_vulkan;  // why vulkan is empty
+    std::optional<vk::CopyBandwidth> copy;
+    std::optional<PeerRunner> peers;
+};
+
+bool wants_vulkan(const std::vector<Cell>& cells) {
+    for (const auto& c : cells)
+        if (c.backend == Backend::Vulkan && c.skip.empty()) return true;
+    return false;
+}
+
+Environment discover(const Options& o, const std::vector<Cell>& cells) {
+    Environment env;
+    if (wants_vulkan(cells)) {
+        try {
+            ContextOptions co;
+            co.device_index = o.device;
+            env.vulkan.emplace(co);
+            // --quick keeps the copy small: it runs in ctest on every build.
+            const std::uint64_t bytes = std::uint64_t(o.scope == Scope::Quick ? 16 : 64) << 20;
+            env.copy = vk::measure_copy_bandwidth(*env.vulkan, bytes);
+        } catch (const Error& e) {
+            env.no_vulkan = e.what();
+            env.vulkan.reset();
+        }
+    }
+    if (o.peers) env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT);
+    return env;
+}
+
+void print_environment(const Environment& env, const Options& o, double budget) {
+    if (env.vulkan) {
+        const auto& d = env.vulkan->device();
+        std::printf("vulkan: %s (%s, %s, Vulkan %s)\n", d.name.c_str(), d.type.c_str(), d.driver.c_str(),
+                    d.api_version.c_str());
+        if (env.copy)
+            std::printf("copy bandwidth: %.2f GB/s (%llu MiB buffer copy, %s)\n", env.copy->bytes_per_second() * 1e-9,
+                        static_cast<unsigned long long>(env.copy->bytes >> 20),
+                        env.copy->device_timed ? "device timestamps" : "host clock");
+    } else if (!env.no_vulkan.empty()) {
+        std::printf("vulkan: not available (%s); vulkan cells are skipped\n", env.no_vulkan.c_str());
+    }
+    if (!o.peers)
+        std::printf("peers: off (--no-peers)\n");
+    else if (env.peers->available())
+        std::printf("peers: %s %s\n", env.peers->python().c_str(), VKFUSE_BENCH_PEER_SCRIPT);
+    else
+        std::printf("peers: not available (%s); peer columns stay empty\n", env.peers->why_not().c_str());
+    std::printf("precision: fp32 only (fp16 storage is not implemented yet); memory limit %.1f GiB\n\n",
+                budget / (1024.0 * 1024.0 * 1024.0));
+}
+
+RunPolicy policy_for(const Options& o, const Cell& c, const Environment& env) {
+    const bool cpu_device = env.vulkan && env.vulkan->device().type == "cpu";
+    return {o.warmup, o.runs, o.cell_seconds, c.backend == Backend::Cpu || cpu_device};
+}
+
+// A cell that is not measured still names the device it was meant for.
+CellResult unmeasured(const Cell& c, const Environment& env) {
+    CellResult r;
+    r.cell = c;
+    r.device = c.backend == Backend::Cpu ? kCpuDevice : env.vulkan ? env.vulkan->device().name : "";
+    return r;
+}
+
+CellResult measure(Environment& env, const Options& o, const Cell& c, const Inputs& in,
+                   const std::vector<Expected>& expected) {
+    CellResult r;
+    try {
+        r = c.backend == Backend::Cpu ? measure_cpu(c, in, expected, policy_for(o, c, env))
+                                      : measure_vulkan(*env.vulkan, c, in, expected, policy_for(o, c, env), o.profile);
+    } catch (const Error& e) {  // out of device memory, device lost: this cell fails, the run goes on
+        r = unmeasured(c, env);
+        r.failure = e.what();
+    }
+    if (c.backend == Backend::Vulkan && env.copy) r.copy_bandwidth = env.copy->bytes_per_second();
+    return r;
+}
+
+void report(CellResult r, std::vector<CellResult>& out) {
+    print_row(stdout, r);
+    std::fflush(stdout);
+    out.push_back(std::move(r));
+}
+
+// The cells of one workload (same inputs, different backends).
+void run_workload(Environment& env, const Options& o, std::vector<Cell> cells, std::vector<CellResult>& out) {
+    for (auto& c : cells)
+        if (c.backend == Backend::Vulkan && c.skip.empty() && !env.vulkan) c.skip = "no Vulkan device";
+    const bool any = std::any_of(cells.begin(), cells.end(), [](const Cell& c) { return c.skip.empty(); });
+    if (!any) {
+        for (const auto& c : cells) report(unmeasured(c, env), out);
+        return;
+    }
+    const Cell& first = cells.front();
+    const Inputs in(first.size, first.frames, first.sensors);
+    const std::vector<Expected> expected = expected_results(in, first.fusion());
+    std::optional<PeerResult> peer;
+    if (env.peers && env.peers->available()) peer = env.peers->run(first, in, expected.front(), o.cell_seconds, o.runs);
+    for (const auto& c : cells) {
+        CellResult r = c.skip.empty() ? measure(env, o, c, in, expected) : unmeasured(c, env);
+        if (r.measured()) r.peer = peer;
+        report(std::move(r), out);
+    }
+    if (peer) print_peer(stdout, *peer);
+}
+
+void check_output_dir(const std::string& option, const std::string& path) {
+    if (path.empty()) return;
+    const auto dir = std::filesystem::absolute(path).parent_path();
+    if (!std::filesystem::is_directory(dir))
+        throw UsageError(option + " " + path + ": directory " + dir.string() + " does not exist");
+}
+
+}  // namespace
+
+int run_bench(const Options& o) {
+    check_output_dir("--json", o.json_path);
+    check_output_dir("--plot", o.plot_path);
+    const double budget = memory_budget(o.mem_limit_gib);
+    const std::vector<Cell> cells = build_matrix(o, budget);
+    Environment env = discover(o, cells);
+    print_environment(env, o, budget);
+    print_table_header(stdout);
+    std::vector<CellResult> results;
+    for (std::size_t i = 0; i < cells.size();) {
+        std::size_t j = i + 1;
+        while (j < cells.size() && cells[j].same_workload(cells[i])) ++j;
+        run_workload(env, o, std::vector<Cell>(cells.begin() + long(i), cells.begin() + long(j)), results);
+        i = j;
+    }
+    print_summary(stdout, results);
+    if (!o.json_path.empty()) write_json(o.json_path, results);
+    if (!o.plot_path.empty()) write_plot(o.plot_path, results, env.vulkan ? env.vulkan->device().name : "no Vulkan device");
+    return 0;
+}
+
+}  // namespace vkfuse::bench

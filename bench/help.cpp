@@ -1,0 +1,76 @@
+#include "options.hpp"
+
+namespace vkfuse::bench {
+
+std::string help_text() {
+    return R"(usage: vkfuse-bench [--quick | --full] [filters] [--json FILE.json] [--plot FILE.svg] [options]
+
+Run time against error of vkfuse's fusion (+ sharpness, contrast and background
+difference, fused image read back) per cell of the matrix
+  method x backend x precision x resolution x K frames x S sensors,
+side by side with the paper-style Python pipelines (PyWavelets, OpenCV, numpy)
+run on the same synthetic tactile frames.
+
+Scopes:
+  (default)   every method at QVGA and VGA, K=3, S=1 on both backends; S=8, 64
+              at QVGA on vulkan; K=2, 5 at QVGA for laplacian and wavelet/bior4.4.
+              With any axis filter the default becomes one block: the given axes
+              with QVGA, K=3, S=1, every method and both backends for the rest.
+  --quick     seconds: channel-sum, brovey, laplacian, wavelet/bior4.4 at 160x120,
+              K=3, S=1 and 2 (the ctest smoke run; filters replace its axes).
+  --full      every cell: 7 methods x 2 backends x 4 sizes x K 2,3,5 x S 1,8,64
+              (hours on lavapipe).
+
+Filters (comma lists; each replaces that axis of the scope):
+  --method M        channel-sum, brovey, laplacian, wavelet
+  --wavelet W       haar, db2, bior2.2, bior4.4 (alone it implies --method wavelet)
+  --backend B       cpu (double-precision reference), vulkan
+  --precision P     fp32 only: fp16 storage is not implemented in vkfuse yet
+  --size WxH        e.g. 320x240, or qvga, vga, 1080p, 4k (4096x4096)
+  --frames K        2..16 (channel-sum exists for K=3 only)
+  --sensors S       1..4096
+  --levels L        pyramid levels for laplacian/wavelet (default 4 / 3)
+
+Output:
+  --json FILE.json  an array with one object per cell: method, wavelet, levels,
+                    backend, device, precision, width, height, frames, sensors,
+                    skipped, median_ms, min_ms, max_ms, runs, runs_capped, plan_ms,
+                    throughput_cycles_s (sensor-cycles/s), mpixels_s, max_abs_err,
+                    mean_abs_err, samples_over_1e-5, checked_sensors,
+                    metric_rel_err{sharpness, contrast, background_diff}, kernel_ms,
+                    bytes_per_cycle, copy_bandwidth_gbs, bandwidth_fraction, peer,
+                    peer_failure, peer_median_ms, peer_ms_per_sensor, peer_runs,
+                    peer_max_abs_err, peer_mean_abs_err, peer_metric_rel_err,
+                    peer_speedup (peer_median_ms / median_ms)
+  --plot FILE.svg   log-log time per sensor-cycle against max abs error,
+                    coloured by method, marked by backend and precision
+  --profile         per-stage GPU times from Plan::profile() (median over runs)
+
+Measurement:
+  --runs N          timed cycles per cell (default 20) after --warmup N (default 2).
+                    On the CPU reference, and on a Vulkan device that is a CPU
+                    (lavapipe), a cell whose runs would exceed --cell-seconds T
+                    (default 60) gets fewer runs, never under 3 (marked * / runs_capped).
+  --device N        Vulkan device index (default: the best usable one)
+  --mem-limit GiB   skip cells estimated to need more (default 80% of available memory)
+  --no-peers        do not run the Python peers
+
+How it measures:
+  A cycle is what a sensor loop does: Plan::run on all S*K frames (upload,
+  fusion, metrics), then fused() and metrics() of every sensor. The CPU reference
+  runs fuse_reference + metrics_reference sensor after sensor. Errors are those
+  of the last cycle against the double reference on the same inputs, over up to
+  4 sensors (first, last, two between). Inputs are deterministic synthetic DIGIT-
+  like frames (gel illumination per LED, a pressed textured object, noise);
+  beyond 8 sensors the frames of sensors 0..7 repeat (the same bytes are still
+  uploaded). bytes_per_cycle counts the S*K frames up and S fused images down;
+  bandwidth_fraction relates it to a buffer copy measured at start.
+  The peer (bench/peers/pipelines.py with /usr/bin/python3, else python3, needing
+  numpy, pywt and cv2) times its own loop (>= 5 runs) on sensor 0's frames in
+  float32; for S > 1 its time is S times that (Python fuses sensors in turn).
+
+Exit status: 0 done, 1 a run-time failure, 2 bad command line (one-line message).
+)";
+}
+
+}  // namespace vkfuse::bench

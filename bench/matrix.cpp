@@ -1,0 +1,161 @@
+#include "matrix.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <tuple>
+
+#include "memory.hpp"
+#include "usage_error.hpp"
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::bench {
+namespace {
+
+// A cartesian block of the matrix.
+struct Slice {
+    std::vector<MethodVariant> methods;
+    std::vector<Backend> backends;
+    std::vector<Size> sizes;
+    std::vector<int> frames;
+    std::vector<int> sensors;
+};
+
+constexpr Size kQvga{320, 240}, kVga{640, 480};
+constexpr Size kQuickSize{160, 120};  // small enough that --quick takes seconds on lavapipe
+
+std::vector<MethodVariant> pyramid_methods() {
+    return {{Method::Laplacian, Wavelet::Bior44}, {Method::Wavelet, Wavelet::Bior44}};
+}
+
+// Default: the side-by-side of every method at QVGA and VGA, batching at QVGA
+// on the GPU, and K = 2, 5 for the two pyramid methods the acceptance names.
+// The CPU reference has no batching (its S-sensor time is S times its S = 1
+// time), so it is not run at S > 1 by default.
+std::vector<Slice> default_slices() {
+    const auto all = all_method_variants();
+    const std::vector<Backend> both{Backend::Cpu, Backend::Vulkan};
+    return {{all, both, {kQvga, kVga}, {3}, {1}},
+            {all, {Backend::Vulkan}, {kQvga}, {3}, {8, 64}},
+            {pyramid_methods(), both, {kQvga}, {2, 5}, {1}}};
+}
+
+std::vector<Slice> scope_slices(Scope scope) {
+    const std::vector<Backend> both{Backend::Cpu, Backend::Vulkan};
+    switch (scope) {
+        case Scope::Quick:
+            return {{{{Method::ChannelSum, Wavelet::Bior44},
+                      {Method::Brovey, Wavelet::Bior44},
+                      {Method::Laplacian, Wavelet::Bior44},
+                      {Method::Wavelet, Wavelet::Bior44}},
+                     both, {kQuickSize}, {3}, {1, 2}}};
+        case Scope::Full: return {{all_method_variants(), both, all_sizes(), all_frame_counts(), all_sensor_counts()}};
+        case Scope::Default: break;
+    }
+    return default_slices();
+}
+
+bool any_axis_filter(const Options& o) {
+    return !o.methods.empty() || !o.wavelets.empty() || !o.backends.empty() || !o.sizes.empty() || !o.frames.empty() ||
+           !o.sensors.empty();
+}
+
+template <class T>
+bool contains(const std::vector<T>& v, const T& x) {
+    return std::find(v.begin(), v.end(), x) != v.end();
+}
+
+// --method and --wavelet: a wavelet filter alone means "wavelet cells of these families".
+std::vector<MethodVariant> filter_methods(const Options& o, const std::vector<MethodVariant>& scope) {
+    std::vector<Method> methods = o.methods;
+    if (methods.empty() && !o.wavelets.empty()) methods = {Method::Wavelet};
+    std::vector<MethodVariant> out;
+    for (const auto& m : all_method_variants()) {
+        const bool method_ok = methods.empty() ? contains(scope, m) : contains(methods, m.method);
+        const bool wavelet_ok = m.method != Method::Wavelet || o.wavelets.empty() || contains(o.wavelets, m.wavelet);
+        if (method_ok && wavelet_ok) out.push_back(m);
+    }
+    return out;
+}
+
+template <class T>
+void replace_if_given(std::vector<T>& axis, const std::vector<T>& filter) {
+    if (!filter.empty()) axis = filter;
+}
+
+// With an axis option, the default scope becomes one block: the given axes
+// with QVGA, K = 3, S = 1, every method and both backends for the others.
+std::vector<Slice> filtered_slices(const Options& o) {
+    std::vector<Slice> slices = scope_slices(o.scope);
+    if (o.scope == Scope::Default && any_axis_filter(o))
+        slices = {{all_method_variants(), {Backend::Cpu, Backend::Vulkan}, {kQvga}, {3}, {1}}};
+    for (auto& s : slices) {
+        s.methods = filter_methods(o, s.methods);
+        replace_if_given(s.backends, o.backends);
+        replace_if_given(s.sizes, o.sizes);
+        replace_if_given(s.frames, o.frames);
+        replace_if_given(s.sensors, o.sensors);
+    }
+    return slices;
+}
+
+std::vector<int> level_counts(const Options& o, Method m) {
+    if (m != Method::Laplacian && m != Method::Wavelet) return {0};
+    if (!o.levels.empty()) return o.levels;
+    FusionSpec spec;
+    spec.method = m;
+    return {spec.effective_levels()};
+}
+
+std::string gib(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f", bytes / (1024.0 * 1024.0 * 1024.0));
+    return text;
+}
+
+// Why a cell cannot run, or "" when it can.
+std::string skip_reason(const Cell& c, double budget) {
+    try {
+        validate(c.fusion(), c.size.height, c.size.width, 3, c.frames);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    const double need = estimated_bytes(c);
+    if (need > budget) return "needs ~" + gib(need) + " GiB (limit " + gib(budget) + " GiB)";
+    return "";
+}
+
+void add_slice(const Options& o, const Slice& s, double budget, std::vector<Cell>& out) {
+    for (const auto& m : s.methods)
+        for (int levels : level_counts(o, m.method))
+            for (Backend b : s.backends)
+                for (Size size : s.sizes)
+                    for (int k : s.frames)
+                        for (int sensors : s.sensors) {
+                            if (m.method == Method::ChannelSum && k != 3) continue;  // defined for K = 3 only
+                            Cell c{m, levels, b, Precision::Fp32, size, k, sensors, ""};
+                            c.skip = skip_reason(c, budget);
+                            out.push_back(c);
+                        }
+}
+
+auto order_key(const Cell& c) {
+    const auto methods = all_method_variants();
+    const auto method_index = std::find(methods.begin(), methods.end(), c.method) - methods.begin();
+    return std::make_tuple(c.size.pixels(), c.size.width, c.frames, c.sensors, method_index, c.levels, c.backend);
+}
+
+}  // namespace
+
+std::vector<Cell> build_matrix(const Options& o, double budget) {
+    std::vector<Cell> cells;
+    for (const auto& slice : filtered_slices(o)) add_slice(o, slice, budget, cells);
+    std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return order_key(a) < order_key(b); });
+    cells.erase(std::unique(cells.begin(), cells.end(),
+                            [](const Cell& a, const Cell& b) { return order_key(a) == order_key(b); }),
+                cells.end());
+    if (cells.empty()) throw UsageError("no benchmark cell matches these options (channel-sum needs --frames 3)");
+    return cells;
+}
+
+}  // namespace vkfuse::bench

@@ -1,0 +1,86 @@
+#include "peer.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "json_value.hpp"
+#include "process.hpp"
+#include "temp_dir.hpp"
+#include "vkfuse/error.hpp"
+#include "vkfuse/io.hpp"
+
+namespace vkfuse::bench {
+namespace {
+
+double number_field(const JsonValue& v, std::string_view key) {
+    const JsonValue* f = v.find(key);
+    if (!f || f->type != JsonValue::Type::Number)
+        throw std::runtime_error("peer output lacks the number \"" + std::string(key) + "\"");
+    return f->number;
+}
+
+std::vector<std::string> peer_command(const std::string& python, const std::string& script, const Cell& cell,
+                                      const std::filesystem::path& dir, int frames, double max_seconds, int runs) {
+    std::vector<std::string> argv{python, script, "--method", std::string(to_string(cell.method.method))};
+    if (cell.method.method == Method::Wavelet) argv.insert(argv.end(), {"--wavelet", std::string(to_string(cell.method.wavelet))});
+    if (cell.levels > 0) argv.insert(argv.end(), {"--levels", std::to_string(cell.levels)});
+    argv.insert(argv.end(), {"--runs", std::to_string(runs), "--max-seconds", std::to_string(max_seconds),
+                             "--background", (dir / "background.npy").string(), "--out", (dir / "fused.npy").string()});
+    for (int k = 0; k < frames; ++k) argv.push_back((dir / ("frame" + std::to_string(k) + ".npy")).string());
+    return argv;
+}
+
+// Reads the script's JSON answer and fused image into r and measures its error.
+void read_answer(const std::string& stdout_text, const std::filesystem::path& fused_path, const Expected& sensor0,
+                 PeerResult& r) {
+    const JsonValue v = parse_json(last_line(stdout_text));
+    const JsonValue* name = v.find("peer");
+    r.name = name && name->type == JsonValue::Type::String ? name->string : "python";
+    r.per_sensor.median_ms = number_field(v, "median_ms");
+    r.per_sensor.min_ms = number_field(v, "min_ms");
+    r.per_sensor.max_ms = number_field(v, "max_ms");
+    r.per_sensor.runs = int(number_field(v, "runs"));
+    Metrics m;
+    m.sharpness = number_field(v, "sharpness");
+    m.contrast = number_field(v, "contrast");
+    m.background_diff = number_field(v, "background_diff");
+    r.metric_error.add(m, sensor0.metrics);
+    r.error.add(io::read_image(fused_path.string()), sensor0.fused);
+}
+
+}  // namespace
+
+PeerRunner::PeerRunner(std::string script) : script_(std::move(script)) {
+    if (!std::filesystem::exists(script_)) {
+        why_not_ = "peer script " + script_ + " not found";
+        return;
+    }
+    for (const std::string candidate : {"/usr/bin/python3", "python3"}) {
+        const auto r = run_process({candidate, "-c", "import numpy, pywt, cv2"});
+        if (r.started && r.exit_code == 0) {
+            python_ = candidate;
+            return;
+        }
+        if (why_not_.empty()) why_not_ = r.started ? candidate + ": " + last_line(r.err) : candidate + ": not found";
+    }
+}
+
+PeerResult PeerRunner::run(const Cell& cell, const Inputs& in, const Expected& sensor0, double max_seconds,
+                           int runs) const {
+    PeerResult r;
+    try {
+        TempDir dir;
+        for (int k = 0; k < in.frames(); ++k)
+            io::write_image((dir.path() / ("frame" + std::to_string(k) + ".npy")).string(), in.frame(sensor0.sensor, k));
+        io::write_image((dir.path() / "background.npy").string(), in.background(sensor0.sensor));
+        const auto p = run_process(peer_command(python_, script_, cell, dir.path(), in.frames(), max_seconds, runs));
+        if (!p.started) throw std::runtime_error(python_ + " could not be started");
+        if (p.exit_code != 0) throw std::runtime_error("exit " + std::to_string(p.exit_code) + ": " + last_line(p.err));
+        read_answer(p.out, dir.path() / "fused.npy", sensor0, r);
+    } catch (const std::exception& e) {  // vkfuse::Error (files) and std::runtime_error alike
+        r.failure = e.what();
+    }
+    return r;
+}
+
+}  // namespace vkfuse::bench

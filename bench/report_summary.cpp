@@ -1,0 +1,55 @@
+#include "report_summary.hpp"
+
+#include <algorithm>
+
+namespace vkfuse::bench {
+namespace {
+
+void print_accuracy(std::FILE* out, const std::vector<CellResult>& results) {
+    int measured = 0;
+    const CellResult* worst = nullptr;
+    for (const auto& r : results) {
+        if (r.cell.backend != Backend::Vulkan || !r.measured()) continue;
+        ++measured;
+        if (!worst || r.error.max_abs > worst->error.max_abs) worst = &r;
+        if (r.error.max_abs > kFusedTolerance || r.metric_error.worst() > kFusedTolerance)
+            std::fprintf(out, "  over 1e-5: %s: max|err| %.2e in %zu of %zu samples, metric rel err %.2e\n",
+                         r.cell.describe().c_str(), r.error.max_abs, r.error.over_tolerance, r.error.samples,
+                         r.metric_error.worst());
+    }
+    if (worst)
+        std::fprintf(out, "accuracy: %d vulkan fp32 cells, worst max|err| %.2e (%s)\n", measured, worst->error.max_abs,
+                     worst->cell.describe().c_str());
+}
+
+// Sensor-cycles per second at S > 1 over the same workload at S = 1.
+void print_batching(std::FILE* out, const std::vector<CellResult>& results) {
+    for (const auto& one : results) {
+        if (one.cell.backend != Backend::Vulkan || one.cell.sensors != 1 || !one.measured()) continue;
+        std::string line;
+        for (const auto& many : results) {
+            Cell as_one = many.cell;
+            as_one.sensors = 1;
+            if (many.cell.backend != Backend::Vulkan || many.cell.sensors == 1 || !many.measured() ||
+                !as_one.same_workload(one.cell))
+                continue;
+            char part[64];
+            std::snprintf(part, sizeof part, " S=%d %.2fx", many.cell.sensors, many.throughput() / one.throughput());
+            line += part;
+        }
+        if (!line.empty())
+            std::fprintf(out, "batching (vulkan sensor-cycles/s vs S=1): %s:%s\n", one.cell.describe().c_str(), line.c_str());
+    }
+}
+
+}  // namespace
+
+void print_summary(std::FILE* out, const std::vector<CellResult>& results) {
+    std::fprintf(out, "\n");
+    print_accuracy(out, results);
+    print_batching(out, results);
+    if (std::any_of(results.begin(), results.end(), [](const CellResult& r) { return r.timing.capped; }))
+        std::fprintf(out, "runs marked * were cut below --runs by --cell-seconds (slow cycles on a CPU).\n");
+}
+
+}  // namespace vkfuse::bench

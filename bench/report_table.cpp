@@ -1,0 +1,64 @@
+#include "report_table.hpp"
+
+#include <string>
+
+namespace vkfuse::bench {
+namespace {
+
+std::string cell_name(const Cell& c) {
+    std::string name = label(c.method);
+    return c.levels > 0 ? name + " L" + std::to_string(c.levels) : name;
+}
+
+std::string fmt(const char* format, double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, format, v);
+    return text;
+}
+
+// The peer's time for the cell and how many times slower it is.
+std::string peer_columns(const CellResult& r) {
+    const auto ms = r.peer_cell_ms();
+    const auto speedup = r.peer_speedup();
+    return (ms ? fmt("%10.2f", *ms) : std::string(9, ' ') + "-") + " " +
+           (speedup ? fmt("%8.2fx", *speedup) : std::string(8, ' ') + "-");
+}
+
+}  // namespace
+
+void print_table_header(std::FILE* out) {
+    std::fprintf(out, "%-22s %-6s %-6s %2s %3s %9s %9s %9s %5s %9s %8s %9s %9s %9s %6s %6s %10s %9s\n", "method", "backend",
+                 "size", "K", "S", "median_ms", "min_ms", "max_ms", "runs", "sensor/s", "Mpix/s", "max|err|", "mean|err|",
+                 "metric_re", ">1e-5", "bw%", "peer_ms", "peer/this");
+}
+
+void print_row(std::FILE* out, const CellResult& r) {
+    const Cell& c = r.cell;
+    std::fprintf(out, "%-22s %-6s %-6s %2d %3d ", cell_name(c).c_str(), std::string(to_string(c.backend)).c_str(),
+                 short_size_name(c.size).c_str(), c.frames, c.sensors);
+    if (!r.measured()) {
+        std::fprintf(out, "%s\n", (c.skip.empty() ? "failed: " + r.failure : "skipped: " + c.skip).c_str());
+        return;
+    }
+    const auto bw = r.bandwidth_fraction();
+    std::fprintf(out, "%9.2f %9.2f %9.2f %4d%s %9.2f %8.2f %9.2e %9.2e %9.2e %6zu %6s %s\n", r.timing.median_ms,
+                 r.timing.min_ms, r.timing.max_ms, r.timing.runs, r.timing.capped ? "*" : " ", r.throughput(),
+                 r.mpixels_per_second(), r.error.max_abs, r.error.mean_abs(), r.metric_error.worst(),
+                 r.error.over_tolerance, bw ? fmt("%5.2f%%", 100 * *bw).c_str() : "-", peer_columns(r).c_str());
+    if (r.stages.empty()) return;
+    std::string line = "    stages (median ms):";
+    for (const auto& s : r.stages) line += " " + s.name + fmt(" %.2f", s.median_ms);
+    std::fprintf(out, "%s\n", line.c_str());
+}
+
+void print_peer(std::FILE* out, const PeerResult& p) {
+    if (!p.failure.empty()) {
+        std::fprintf(out, "    peer failed: %s\n", p.failure.c_str());
+        return;
+    }
+    std::fprintf(out, "    peer %s: %.2f ms/sensor (median of %d, min %.2f, max %.2f), max|err| %.2e, mean|err| %.2e, metric_re %.2e\n",
+                 p.name.c_str(), p.per_sensor.median_ms, p.per_sensor.runs, p.per_sensor.min_ms, p.per_sensor.max_ms,
+                 p.error.max_abs, p.error.mean_abs(), p.metric_error.worst());
+}
+
+}  // namespace vkfuse::bench

@@ -1,0 +1,21 @@
+#include "result.hpp"
+
+namespace vkfuse::bench {
+
+std::optional<double> CellResult::bandwidth_fraction() const {
+    if (!bytes_per_cycle || !copy_bandwidth || *copy_bandwidth <= 0 || timing.median_ms <= 0) return std::nullopt;
+    return *bytes_per_cycle / (timing.median_ms * 1e-3) / *copy_bandwidth;
+}
+
+std::optional<double> CellResult::peer_cell_ms() const {
+    if (!peer || !peer->failure.empty()) return std::nullopt;
+    return peer->per_sensor.median_ms * cell.sensors;
+}
+
+std::optional<double> CellResult::peer_speedup() const {
+    const auto p = peer_cell_ms();
+    if (!p || timing.median_ms <= 0 || !measured()) return std::nullopt;
+    return *p / timing.median_ms;
+}
+
+}  // namespace vkfuse::bench

@@ -1,0 +1,53 @@
+// What one cell measured, as the table, the JSON and the plot report it.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "accuracy.hpp"
+#include "cell.hpp"
+#include "timing.hpp"
+
+namespace vkfuse::bench {
+
+struct StageTime {
+    std::string name;
+    double median_ms = 0;  // over the timed runs
+};
+
+// A Python peer pipeline run on sensor 0's frames of a workload.
+struct PeerResult {
+    std::string name;      // "pywt 1.1.1 wavedec2/waverec2 + numpy 1.24.2"
+    std::string failure;   // non-empty: the peer did not produce a result
+    Timing per_sensor;     // the script's own loop, one sensor's cycle
+    FusedError error;      // its fused image against the reference
+    MetricError metric_error;
+};
+
+struct CellResult {
+    Cell cell;
+    std::string device;   // "llvmpipe (...)", or the CPU reference's description
+    std::string failure;  // the cell was meant to run but could not (device error)
+    Timing timing;
+    double plan_ms = 0;   // Plan construction (pipelines, buffers, recording)
+    FusedError error;
+    MetricError metric_error;
+    int checked_sensors = 0;  // sensors compared with the reference
+    std::vector<StageTime> stages;          // with --profile, Vulkan only
+    std::optional<double> bytes_per_cycle;  // uploads + readback, Vulkan only
+    std::optional<double> copy_bandwidth;   // bytes/s of a device buffer copy, this run
+    std::optional<PeerResult> peer;
+
+    bool measured() const { return cell.skip.empty() && failure.empty(); }
+    double cycles_per_second() const { return timing.median_ms > 0 ? 1000.0 / timing.median_ms : 0; }
+    // Sensor-cycles per second: every sensor's frames fused and scored once.
+    double throughput() const { return cell.sensors * cycles_per_second(); }
+    // Fused megapixels per second.
+    double mpixels_per_second() const { return throughput() * cell.size.pixels() * 1e-6; }
+    std::optional<double> bandwidth_fraction() const;
+    // The peer's time for this cell's S sensors (it runs one; Python fuses sensors one after another).
+    std::optional<double> peer_cell_ms() const;
+    std::optional<double> peer_speedup() const;  // peer_cell_ms / median_ms
+};
+
+}  // namespace vkfuse::bench
