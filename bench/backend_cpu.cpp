@@ -37,6 +37,7 @@ CellResult measure_cpu(const Cell& cell, const Inputs& in, const std::vector<Exp
         const SensorResult& got = kept[e.sensor];
         r.error.add(got.fused, e.fused);
         r.metric_error.add(got.metrics, e.metrics);
+        r.metric_error_own_image.add(got.metrics, e.metrics);  // its own image is the reference
     }
     r.checked_sensors = int(expected.size());
     return r;

@@ -3,6 +3,7 @@
 
 #include "backends.hpp"
 #include "vkfuse/plan.hpp"
+#include "vkfuse/reference.hpp"
 
 namespace vkfuse::bench {
 namespace {
@@ -65,6 +66,9 @@ CellResult measure_vulkan(Context& context, const Cell& cell, const Inputs& in, 
     for (const auto& e : expected) {
         r.error.add(plan.fused(e.sensor), e.fused);
         r.metric_error.add(plan.metrics(e.sensor), e.metrics);
+        const ImageD background = convert<double>(in.background(e.sensor));
+        r.metric_error_own_image.add(plan.metrics(e.sensor),
+                                     metrics_reference(convert<double>(plan.fused(e.sensor)), &background));
     }
     r.checked_sensors = int(expected.size());
     // Every frame up, every fused image and the metric totals (8 floats) down.

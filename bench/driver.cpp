@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <thread>
 
 #include "backends.hpp"
+#include "host_load.hpp"
 #include "matrix.hpp"
 #include "memory.hpp"
 #include "peer.hpp"
@@ -70,8 +72,10 @@ void print_environment(const Environment& env, const Options& o, double budget) 
         std::printf("peers: %s %s\n", env.peers->python().c_str(), VKFUSE_BENCH_PEER_SCRIPT);
     else
         std::printf("peers: not available (%s); peer columns stay empty\n", env.peers->why_not().c_str());
-    std::printf("precision: fp32 only (fp16 storage is not implemented yet); memory limit %.1f GiB\n\n",
+    std::printf("precision: fp32 only (fp16 storage is not implemented yet); memory limit %.1f GiB\n",
                 budget / (1024.0 * 1024.0 * 1024.0));
+    std::printf("host: %u CPUs, load average %.2f at start (other processes share what is timed)\n\n",
+                std::thread::hardware_concurrency(), load_average());
 }
 
 RunPolicy policy_for(const Options& o, const Cell& c, const Environment& env) {
@@ -90,6 +94,7 @@ CellResult unmeasured(const Cell& c, const Environment& env) {
 CellResult measure(Environment& env, const Options& o, const Cell& c, const Inputs& in,
                    const std::vector<Expected>& expected) {
     CellResult r;
+    const double load = load_average();
     try {
         r = c.backend == Backend::Cpu ? measure_cpu(c, in, expected, policy_for(o, c, env))
                                       : measure_vulkan(*env.vulkan, c, in, expected, policy_for(o, c, env), o.profile);
@@ -98,6 +103,7 @@ CellResult measure(Environment& env, const Options& o, const Cell& c, const Inpu
         r.failure = e.what();
     }
     if (c.backend == Backend::Vulkan && env.copy) r.copy_bandwidth = env.copy->bytes_per_second();
+    r.load_average = load;
     return r;
 }
 

@@ -50,10 +50,12 @@ void add_measurements(JsonObject& o, const CellResult& r) {
     o.number_or_null("throughput_cycles_s", when(r.throughput())).number_or_null("mpixels_s", when(r.mpixels_per_second()));
     o.number_or_null("max_abs_err", when(r.error.max_abs)).number_or_null("mean_abs_err", when(r.error.mean_abs()));
     o.number_or_null("samples_over_1e-5", when(double(r.error.over_tolerance))).number_or_null("checked_sensors", when(r.checked_sensors));
-    if (m)
+    if (m) {
         o.raw("metric_rel_err", metric_errors_json(r.metric_error));
-    else
-        o.null("metric_rel_err");
+        o.raw("metric_rel_err_own_image", metric_errors_json(r.metric_error_own_image));
+    } else {
+        o.null("metric_rel_err").null("metric_rel_err_own_image");
+    }
     if (m && !r.stages.empty())
         o.raw("kernel_ms", stages_json(r.stages));
     else
@@ -61,6 +63,7 @@ void add_measurements(JsonObject& o, const CellResult& r) {
     o.number_or_null("bytes_per_cycle", m ? r.bytes_per_cycle : std::nullopt);
     o.number_or_null("copy_bandwidth_gbs", r.copy_bandwidth ? std::optional<double>(*r.copy_bandwidth * 1e-9) : std::nullopt);
     o.number_or_null("bandwidth_fraction", m ? r.bandwidth_fraction() : std::nullopt);
+    o.number_or_null("load_average", when(r.load_average));
 }
 
 void add_peer(JsonObject& o, const CellResult& r) {

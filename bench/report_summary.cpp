@@ -13,13 +13,20 @@ void print_accuracy(std::FILE* out, const std::vector<CellResult>& results) {
         ++measured;
         if (!worst || r.error.max_abs > worst->error.max_abs) worst = &r;
         if (r.error.max_abs > kFusedTolerance || r.metric_error.worst() > kFusedTolerance)
-            std::fprintf(out, "  over 1e-5: %s: max|err| %.2e in %zu of %zu samples, metric rel err %.2e\n",
+            std::fprintf(out,
+                         "  over 1e-5: %s: max|err| %.2e in %zu of %zu samples, metric rel err %.2e "
+                         "(%.2e on its own fused image)\n",
                          r.cell.describe().c_str(), r.error.max_abs, r.error.over_tolerance, r.error.samples,
-                         r.metric_error.worst());
+                         r.metric_error.worst(), r.metric_error_own_image.worst());
     }
     if (worst)
         std::fprintf(out, "accuracy: %d vulkan fp32 cells, worst max|err| %.2e (%s)\n", measured, worst->error.max_abs,
                      worst->cell.describe().c_str());
+    if (worst && worst->error.over_tolerance > 0)
+        std::fprintf(out,
+                     "  max-abs near-ties are the known source of samples over 1e-5: where two frames' coefficients "
+                     "differ in magnitude by less than float rounding, float and double may pick different frames "
+                     "(the mean/max/min rules stay below 1e-6 on the same frames).\n");
 }
 
 // Sensor-cycles per second at S > 1 over the same workload at S = 1.

@@ -32,7 +32,12 @@ struct CellResult {
     double plan_ms = 0;   // Plan construction (pipelines, buffers, recording)
     FusedError error;
     MetricError metric_error;
+    // The metrics against the reference metrics of this backend's own fused
+    // image: the reductions' error alone, without the fusion's (a max-abs
+    // near-tie changes the image, and with it the metrics, legitimately).
+    MetricError metric_error_own_image;
     int checked_sensors = 0;  // sensors compared with the reference
+    double load_average = 0;  // host 1-minute load average when the cell started
     std::vector<StageTime> stages;          // with --profile, Vulkan only
     std::optional<double> bytes_per_cycle;  // uploads + readback, Vulkan only
     std::optional<double> copy_bandwidth;   // bytes/s of a device buffer copy, this run
