@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <map>
 
 #include "backends.hpp"
@@ -19,9 +20,10 @@ CellResult measure_cpu(const Cell& cell, const Inputs& in, const std::vector<Exp
     r.cell = cell;
     r.device = kCpuDevice;
     const FusionSpec spec = cell.fusion();
-    // Backgrounds are set once per sensor, as Plan::set_background does on the GPU path.
+    // Backgrounds are converted once, as Plan::set_background does on the GPU
+    // path (per scene: sensors that share a scene share its background).
     std::vector<ImageD> backgrounds;
-    for (int s = 0; s < cell.sensors; ++s) backgrounds.push_back(convert<double>(in.background(s)));
+    for (int s = 0; s < std::min(cell.sensors, kMaxScenes); ++s) backgrounds.push_back(convert<double>(in.background(s)));
     std::map<int, SensorResult> kept;  // the checked sensors' results of the last cycle
     for (const auto& e : expected) kept[e.sensor];
     std::vector<ImageD> frames(std::size_t(cell.frames));
@@ -29,7 +31,7 @@ CellResult measure_cpu(const Cell& cell, const Inputs& in, const std::vector<Exp
         for (int s = 0; s < cell.sensors; ++s) {
             for (int k = 0; k < cell.frames; ++k) frames[std::size_t(k)] = convert<double>(in.frame(s, k));
             ImageD fused = fuse_reference(frames, spec);
-            const Metrics m = metrics_reference(fused, &backgrounds[std::size_t(s)]);
+            const Metrics m = metrics_reference(fused, &backgrounds[std::size_t(in.scene_of(s))]);
             if (auto it = kept.find(s); it != kept.end()) it->second = {std::move(fused), m};
         }
     });

@@ -1,5 +1,6 @@
 #include "driver.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -135,6 +136,13 @@ void run_workload(Environment& env, const Options& o, std::vector<Cell> cells, s
     if (peer) print_peer(stdout, *peer);
 }
 
+void print_cells(const std::vector<Cell>& cells) {
+    for (const auto& c : cells)
+        std::printf("%-40s ~%8.3f GiB  %s\n", c.describe().c_str(), estimated_bytes(c) / (1024.0 * 1024.0 * 1024.0),
+                    c.skip.empty() ? "" : ("skipped: " + c.skip).c_str());
+    std::printf("%zu cells\n", cells.size());
+}
+
 void check_output_dir(const std::string& option, const std::string& path) {
     if (path.empty()) return;
     const auto dir = std::filesystem::absolute(path).parent_path();
@@ -149,6 +157,10 @@ int run_bench(const Options& o) {
     check_output_dir("--plot", o.plot_path);
     const double budget = memory_budget(o.mem_limit_gib);
     const std::vector<Cell> cells = build_matrix(o, budget);
+    if (o.list) {
+        print_cells(cells);
+        return 0;
+    }
     Environment env = discover(o, cells);
     print_environment(env, o, budget);
     print_table_header(stdout);

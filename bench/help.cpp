@@ -54,6 +54,7 @@ Measurement:
   --device N        Vulkan device index (default: the best usable one)
   --mem-limit GiB   skip cells estimated to need more (default 80% of available memory)
   --no-peers        do not run the Python peers
+  --list            print the cells (with estimated memory and skip reasons), run nothing
 
 How it measures:
   A cycle is what a sensor loop does: Plan::run on all S*K frames (upload,

@@ -1,7 +1,6 @@
 #include "matrix.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <tuple>
 

@@ -11,6 +11,7 @@ namespace vkfuse::bench {
 namespace {
 
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+constexpr double kProcessBytes = 0.25 * kGiB;  // the process itself: Vulkan driver, LLVM (lavapipe), Python peer
 
 // Device floats per input float and per output float beyond upload and input
 // planes, from the graph builders in src/vk: the wavelet keeps every level's
@@ -36,13 +37,19 @@ double estimated_bytes(const Cell& c) {
     const double inputs = frame * c.frames * c.sensors;
     const double outputs = frame * c.sensors;
     const double scenes = std::min(c.sensors, kMaxScenes);
-    // Host: generated frames and backgrounds, the reference (double) of up to
-    // four checked sensors with its own pyramid, the fused images read back.
-    const double host = frame * scenes * (c.frames + 1) + 4 * 2 * frame * (2 * c.frames + 4) + outputs;
-    if (c.backend == Backend::Cpu) return host + 2 * frame * (2 * c.frames + 4);
+    const double checked = std::min(c.sensors, 4);
+    // One reference computation at its peak: K frames in double, their
+    // transforms (about 1.5 times their size) and the fused result.
+    const double reference = 2 * frame * (2.5 * c.frames + 2);
+    // Host: generated frames and backgrounds, one reference computation, the
+    // checked sensors' reference results kept (double).
+    const double host = kProcessBytes + frame * scenes * (c.frames + 1) + reference + 2 * frame * checked;
+    // The CPU backend: its own computation, its backgrounds and kept results in double.
+    if (c.backend == Backend::Cpu) return host + reference + 2 * frame * (scenes + checked);
     const auto im = intermediates(c.method.method);
-    // Upload + planar input, intermediates, readback + backgrounds.
-    return host + 2 * inputs + im.per_input * inputs + im.per_output * outputs + 2 * outputs;
+    // Upload + planar input, intermediates, readback + backgrounds, and the
+    // fused images Plan::fused() keeps on the host.
+    return host + 2 * inputs + im.per_input * inputs + im.per_output * outputs + 3 * outputs;
 }
 
 double memory_budget(double limit_gib) {

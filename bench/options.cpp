@@ -99,6 +99,7 @@ const std::map<std::string, std::function<void(Options&)>, std::less<>>& flags()
         {"--full", [](Options& o) { o.scope = Scope::Full; }},
         {"--profile", [](Options& o) { o.profile = true; }},
         {"--no-peers", [](Options& o) { o.peers = false; }},
+        {"--list", [](Options& o) { o.list = true; }},
         {"--help", [](Options& o) { o.help = true; }},
         {"-h", [](Options& o) { o.help = true; }},
     };

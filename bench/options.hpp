@@ -32,6 +32,7 @@ struct Options {
     double cell_seconds = 60;    // run budget of one cell where runs may be capped
     int device = -1;             // Vulkan device index, -1: the best one
     double mem_limit_gib = 0;    // 0: 80% of the memory available at start
+    bool list = false;           // print the cells and exit
     bool help = false;
 };
 

@@ -61,7 +61,7 @@ PeerRunner::PeerRunner(std::string script) : script_(std::move(script)) {
             python_ = candidate;
             return;
         }
-        if (why_not_.empty()) why_not_ = r.started ? candidate + ": " + last_line(r.err) : candidate + ": not found";
+        why_not_ += (why_not_.empty() ? "" : "; ") + candidate + ": " + (r.started ? last_line(r.err) : "not found");
     }
 }
 
