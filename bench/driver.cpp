@@ -51,7 +51,7 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
             env.vulkan.reset();
         }
     }
-    if (o.peers) env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT);
+    if (o.peers) env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
     return env;
 }
 

@@ -56,6 +56,7 @@ Measurement:
   --device N        Vulkan device index (default: the best usable one)
   --mem-limit GiB   skip cells estimated to need more (default 80% of available memory)
   --no-peers        do not run the Python peers
+  --python PATH     the peers' interpreter (default /usr/bin/python3, then python3)
   --list            print the cells (with estimated memory and skip reasons), run nothing
 
 How it measures:

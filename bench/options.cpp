@@ -83,6 +83,7 @@ const std::map<std::string, Setter, std::less<>>& setters() {
              add_list(o.levels, opt, v, [&](auto s) { return parse_int(opt, s, 1, 16); });
          }},
         {"--json", [](Options& o, auto, auto v) { o.json_path = std::string(v); }},
+        {"--python", [](Options& o, auto, auto v) { o.python = std::string(v); }},
         {"--plot", [](Options& o, auto, auto v) { o.plot_path = std::string(v); }},
         {"--runs", [](Options& o, auto opt, auto v) { o.runs = parse_int(opt, v, 1, 100000); }},
         {"--warmup", [](Options& o, auto opt, auto v) { o.warmup = parse_int(opt, v, 0, 1000); }},

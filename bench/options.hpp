@@ -27,6 +27,7 @@ struct Options {
     std::string plot_path;
     bool profile = false;
     bool peers = true;
+    std::string python;          // the peers' interpreter; empty: /usr/bin/python3, then python3
     int runs = 20;               // timed cycles per cell
     int warmup = 2;              // untimed cycles before them
     double cell_seconds = 60;    // run budget of one cell where runs may be capped

@@ -33,7 +33,9 @@ std::vector<std::string> peer_command(const std::string& python, const std::stri
 // Reads the script's JSON answer and fused image into r and measures its error.
 void read_answer(const std::string& stdout_text, const std::filesystem::path& fused_path, const Expected& sensor0,
                  PeerResult& r) {
-    const JsonValue v = parse_json(last_line(stdout_text));
+    const std::string answer = last_line(stdout_text);
+    if (answer.empty()) throw std::runtime_error("the peer printed nothing on stdout");
+    const JsonValue v = parse_json(answer);
     const JsonValue* name = v.find("peer");
     r.name = name && name->type == JsonValue::Type::String ? name->string : "python";
     r.per_sensor.median_ms = number_field(v, "median_ms");
@@ -50,12 +52,14 @@ void read_answer(const std::string& stdout_text, const std::filesystem::path& fu
 
 }  // namespace
 
-PeerRunner::PeerRunner(std::string script) : script_(std::move(script)) {
+PeerRunner::PeerRunner(std::string script, const std::string& python) : script_(std::move(script)) {
     if (!std::filesystem::exists(script_)) {
         why_not_ = "peer script " + script_ + " not found";
         return;
     }
-    for (const std::string candidate : {"/usr/bin/python3", "python3"}) {
+    const std::vector<std::string> candidates =
+        python.empty() ? std::vector<std::string>{"/usr/bin/python3", "python3"} : std::vector<std::string>{python};
+    for (const auto& candidate : candidates) {
         const auto r = run_process({candidate, "-c", "import numpy, pywt, cv2"});
         if (r.started && r.exit_code == 0) {
             python_ = candidate;

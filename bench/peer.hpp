@@ -12,10 +12,11 @@ namespace vkfuse::bench {
 
 class PeerRunner {
 public:
-    // Finds an interpreter that imports numpy, pywt and cv2: /usr/bin/python3
-    // first (Debian's, with python3-pywt and python3-opencv), then python3 on
-    // PATH. Without one (or without the script) available() is false.
-    explicit PeerRunner(std::string script);
+    // Finds an interpreter that imports numpy, pywt and cv2: `python` when
+    // given, else /usr/bin/python3 (Debian's, with python3-pywt and
+    // python3-opencv), then python3 on PATH. Without one (or without the
+    // script) available() is false.
+    PeerRunner(std::string script, const std::string& python);
 
     bool available() const { return !python_.empty(); }
     const std::string& python() const { return python_; }
