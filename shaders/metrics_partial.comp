@@ -4,9 +4,12 @@
 #include "reduce.glsl"
 // Per-workgroup partial sums of the metrics over the fused planes of each
 // sensor (workgroup z = sensor). Pass 0: (sum of gradient magnitude of luma,
-// sum of luma, sum over channels of |I - B|, 0). Pass 1, once the mean luma is
-// known: (sum of (Y - mean)^2, 0, 0, 0): contrast takes two passes so it never
-// subtracts two large nearly equal sums.
+// sum of Y - Y0, sum over channels of |I - B|, sum of |Y - Y0|), Y0 being the
+// sensor's first luma. Pass 1, once the mean is known: (sum of
+// ((Y - Y0 - mean) * scale)^2, scale, 0, 0). Contrast takes two passes so it
+// never subtracts two large nearly equal sums, and is taken about Y0 so that a
+// constant image sums exact zeros (contrast exactly 0, not the rounding residue
+// of its mean) and a nearly flat one sums small deviations, not its level.
 layout(local_size_x = 256) in;
 layout(push_constant, std430) uniform Push {
     Floats img;       // planes s*C + c, width x height
@@ -39,11 +42,38 @@ float gradient(uint base, int x, int y, int dx, int dy, int pos, int n) {
     return (luma(base, x + dx, y + dy) - luma(base, x - dx, y - dy)) * 0.5;
 }
 
+// |(gx, gy)| without squaring the components: gx * gx overflows float beyond
+// 1.8e19 (a frame scaled by 1e30 gave Inf, then NaN in the Kahan sum) and
+// underflows to 0 below 1e-19. Factoring out the larger one is exact up to
+// rounding at every scale and keeps the result homogeneous in the frame.
+float magnitude(float gx, float gy) {
+    float big = max(abs(gx), abs(gy));
+    if (big == 0.0) return 0.0;
+    float ratio = min(abs(gx), abs(gy)) / big;
+    return big * sqrt(1.0 + ratio * ratio);
+}
+
+// Pass 1 multiplies each deviation by a power of two near 1 / mean|Y - Y0| so
+// that its square neither overflows (frames near 1e30) nor underflows (near
+// 1e-30); a power of two changes no rounding. Clamped so the scale itself and
+// its reduction stay normal floats; 1 for a constant image.
+float deviation_scale(float abs_sum, uint pixels) {
+    if (abs_sum == 0.0) return 1.0;
+    int exponent;
+    frexp(abs_sum, exponent);
+    return ldexp(1.0, clamp(findMSB(pixels) - exponent, -126, 126));
+}
+
 void main() {
     uint s = gl_WorkGroupID.z, g = gl_WorkGroupID.x;
     uint pixels = uint(pc.width * pc.height);
     uint base = s * pc.channels * pixels;
-    float mean = pc.pass_index == 1u ? pc.totals.v[s * 4u + 1u] / float(pixels) : 0.0;
+    float y0 = luma(base, 0, 0);
+    float mean = 0.0, scale = 1.0;
+    if (pc.pass_index == 1u) {
+        mean = pc.totals.v[s * 4u + 1u] / float(pixels);
+        scale = deviation_scale(pc.totals.v[s * 4u + 3u], pixels);
+    }
     precise vec4 sum = vec4(0.0), comp = vec4(0.0);
     for (uint i = 0u; i < ITEMS; ++i) {
         uint p = (g * ITEMS + i) * WG + gl_LocalInvocationIndex;
@@ -53,14 +83,18 @@ void main() {
         if (pc.pass_index == 0u) {
             float gx = gradient(base, x, y, 1, 0, x, pc.width);
             float gy = gradient(base, x, y, 0, 1, y, pc.height);
-            v.x = sqrt(gx * gx + gy * gy);
-            v.y = luma(base, x, y);
+            v.x = magnitude(gx, gy);
+            v.y = luma(base, x, y) - y0;
             if (pc.has_bg != 0u)
                 for (uint c = 0u; c < pc.channels; ++c)
                     v.z += abs(pc.img.v[base + c * pixels + p] - pc.bg.v[base + c * pixels + p]);
+            v.w = abs(v.y);
         } else {
-            float d = luma(base, x, y) - mean;
+            float d = (luma(base, x, y) - y0 - mean) * scale;
             v.x = d * d;
+            // The host divides the scale back out: it travels as a sum with one
+            // non-zero term, so the value the host reads is the one used here.
+            v.y = p == 0u ? scale : 0.0;
         }
         kahan_add(sum, comp, v);
     }

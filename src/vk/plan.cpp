@@ -228,7 +228,8 @@ Metrics Plan::metrics(int sensor) const {
     const double n = double(im.cfg.height) * im.cfg.width;
     Metrics m;
     m.sharpness = double(t0[0]) / n;
-    m.contrast = std::sqrt(std::max(0.0, double(t1[0])) / n);
+    // t1[0] sums squared deviations multiplied by t1[1], a power of two (metrics_partial.comp).
+    m.contrast = std::sqrt(std::max(0.0, double(t1[0])) / n) / double(t1[1]);
     if (im.cfg.background_diff) m.background_diff = double(t0[2]) / (n * im.cfg.channels);
     return m;
 }
