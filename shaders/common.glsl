@@ -6,6 +6,14 @@
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { float v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Words { uint v[]; };
 
+// Item index of a 1-D kernel of group_size invocations per group, dispatched
+// as an (x, y) grid of workgroups (grid_1d() in recorder.hpp: x alone is
+// limited to 65535 groups). The size is passed in because gl_WorkGroupSize is
+// not yet declared where this file is included.
+uint linear_index(uint group_size) {
+    return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * group_size + gl_LocalInvocationID.x;
+}
+
 // Index reflection about the first and last sample without repeating them
 // (OpenCV BORDER_REFLECT_101, "whole-sample symmetric"): -1 -> 1, n -> n-2.
 int reflect101(int i, int n) {

@@ -12,7 +12,7 @@ layout(push_constant, std430) uniform Push {
 } pc;
 
 void main() {
-    uint p = gl_GlobalInvocationID.x, s = gl_WorkGroupID.z;
+    uint p = linear_index(256u), s = gl_WorkGroupID.z;
     if (p >= pc.pixels) return;
     for (uint c = 0u; c < pc.channels; ++c)
         pc.dst.v[(s * pc.pixels + p) * pc.channels + c] = pc.src.v[(s * pc.channels + c) * pc.pixels + p];

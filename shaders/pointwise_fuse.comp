@@ -13,7 +13,7 @@ layout(push_constant, std430) uniform Push {
 } pc;
 
 void main() {
-    uint p = gl_GlobalInvocationID.x, z = gl_WorkGroupID.z;
+    uint p = linear_index(256u), z = gl_WorkGroupID.z;
     if (p >= pc.pixels) return;
     uint s = z / pc.channels, c = z % pc.channels;
     float result;

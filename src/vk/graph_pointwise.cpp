@@ -6,6 +6,7 @@ namespace vkfuse::vk {
 VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input) {
     const std::uint32_t pixels = std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height);
     const VkDeviceAddress out = g.floats(std::uint64_t(g.planes_out()) * pixels);
+    const Grid grid = grid_1d(pixels, 256);
     const bool channel_sum = g.cfg.fusion.method == Method::ChannelSum;
     g.rec.dispatch("pointwise_fuse",
                    PushConstants()
@@ -15,7 +16,7 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input) {
                        .u32(std::uint32_t(g.cfg.frames))
                        .u32(std::uint32_t(g.cfg.channels))
                        .u32(channel_sum ? 1 : 0),
-                   groups(pixels, 256), 1, g.planes_out());
+                   grid.x, grid.y, g.planes_out());
     g.rec.mark(channel_sum ? "channel_sum" : "brovey");
     return out;
 }

@@ -97,9 +97,10 @@ void Plan::Impl::record() {
                        totals + std::size_t(cfg.sensors) * 16);
     }
     if (cfg.want_fused) {
+        const vk::Grid grid = vk::grid_1d(std::uint64_t(w) * h, 256);
         rec.dispatch("pack",
                      vk::PushConstants().ptr(fused_planes).ptr(readback.address()).u32(w * h).u32(std::uint32_t(cfg.channels)),
-                     vk::groups(std::uint64_t(w) * h, 256), 1, std::uint32_t(cfg.sensors));
+                     grid.x, grid.y, std::uint32_t(cfg.sensors));
         rec.mark("pack");
     }
     rec.finish();

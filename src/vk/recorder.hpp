@@ -42,4 +42,18 @@ inline std::uint32_t groups(std::uint64_t n, std::uint32_t per_group) {
     return std::uint32_t((n + per_group - 1) / per_group);
 }
 
+// Groups covering n items of a 1-D kernel, laid out as an (x, y) grid: many
+// devices, lavapipe included, allow only 65535 groups along x, fewer than a
+// 4096 x 4096 plane needs at 256 per group. The kernel rebuilds its item index
+// with linear_index() (common.glsl) and skips the few past n.
+struct Grid {
+    std::uint32_t x, y;
+};
+inline Grid grid_1d(std::uint64_t n, std::uint32_t per_group) {
+    constexpr std::uint64_t kMaxX = 32768;
+    const std::uint64_t total = (n + per_group - 1) / per_group;
+    const std::uint64_t x = total < kMaxX ? (total > 0 ? total : 1) : kMaxX;
+    return {std::uint32_t(x), std::uint32_t((total + x - 1) / x)};
+}
+
 }  // namespace vkfuse::vk
