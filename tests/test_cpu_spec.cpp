@@ -104,5 +104,17 @@ TEST(CpuSpec, FrameAndChannelCounts) {
     EXPECT_NE(invalid_argument_message([&] { validate(lap, 4, 4, 1, 0); }), "");
 }
 
+// Past 1 x 1 a Laplacian level repeats the one above; an absurd count used to
+// allocate a level per unit (2^31 - 1 ran out of memory) instead of failing.
+TEST(CpuSpec, LaplacianLevelsAreBoundedPastOnePixel) {
+    FusionSpec lap;
+    lap.method = Method::Laplacian;
+    lap.levels = 32;
+    EXPECT_EQ(invalid_argument_message([&] { validate(lap, 1, 1, 1, 2); }), "");
+    lap.levels = 2147483647;
+    EXPECT_EQ(invalid_argument_message([&] { validate(lap, 1, 1, 1, 2); }),
+              "--levels 2147483647: a Laplacian pyramid takes at most 32 levels (31 reach 1x1 from any size)");
+}
+
 }  // namespace
 }  // namespace vkfuse

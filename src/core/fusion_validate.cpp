@@ -12,6 +12,12 @@ namespace {
 
 std::string size_text(int height, int width) { return std::to_string(height) + "x" + std::to_string(width); }
 
+// pyrDown halves each side (rounding up), so 31 levels take any image an int
+// can size down to 1 x 1, and deeper levels only repeat that 1 x 1 top. The
+// bound keeps an absurd --levels from allocating and recording one pyramid
+// level per unit (2^31 levels ran out of memory instead of failing).
+constexpr int kMaxLaplacianLevels = 32;
+
 // Side a square image needs for one level: dwt_max_level(n, F) >= 1 <=> n >= 2 (F - 1).
 int min_side_for_one_level(Wavelet w) { return 2 * (filter_length(w) - 1); }
 
@@ -51,8 +57,11 @@ void validate(const FusionSpec& spec, int height, int width, int channels, int f
     if (spec.levels < 0) fail("--levels " + std::to_string(spec.levels) + ": must be >= 0 (0 = method default)");
     check_frame_count(spec, channels, frames);
     if (spec.method == Method::Wavelet) check_wavelet_levels(spec, height, width);
-    // Laplacian needs nothing more: pyrDown of any size >= 1 is >= 1, so every
-    // level count >= 1 is computable (effective_levels() is >= 1 here).
+    // pyrDown of any size >= 1 is >= 1, so every Laplacian level count >= 1 is
+    // computable; only the pointless ones past 1 x 1 are bounded.
+    if (spec.method == Method::Laplacian && spec.effective_levels() > kMaxLaplacianLevels)
+        fail("--levels " + std::to_string(spec.levels) + ": a Laplacian pyramid takes at most " +
+             std::to_string(kMaxLaplacianLevels) + " levels (31 reach 1x1 from any size)");
 }
 
 }  // namespace vkfuse
