@@ -2,11 +2,14 @@
 // its exit status, stdout and stderr. Header-only for the test_cli_* files.
 #pragma once
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <chrono>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "temp_dir.hpp"
@@ -53,6 +56,9 @@ inline std::vector<char*> c_strings(std::vector<std::string>& words) {
     return out;
 }
 
+// Far above any command the tests run (the slowest takes seconds on lavapipe).
+inline constexpr std::chrono::seconds kCliTimeout{300};
+
 inline CliResult run_cli(const std::vector<std::string>& args, const std::vector<std::string>& extra_env = {}) {
     TempDir capture;
     std::string out_path = capture.file("stdout"), err_path = capture.file("stderr");
@@ -69,12 +75,26 @@ inline CliResult run_cli(const std::vector<std::string>& args, const std::vector
     int rc = posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw std::runtime_error("cannot start " + std::string(VKFUSE_CLI));
+    // A command that hangs (it once waited forever on a FIFO given as input)
+    // is killed, so the test fails with a message instead of never ending.
     int wstatus = 0;
-    if (waitpid(pid, &wstatus, 0) != pid) throw std::runtime_error("waitpid failed");
+    const auto deadline = std::chrono::steady_clock::now() + kCliTimeout;
+    bool killed = false;
+    for (;;) {
+        pid_t done = waitpid(pid, &wstatus, WNOHANG);
+        if (done == pid) break;
+        if (done < 0) throw std::runtime_error("waitpid failed");
+        if (!killed && std::chrono::steady_clock::now() > deadline) {
+            ::kill(pid, SIGKILL);
+            killed = true;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
     CliResult result;
     result.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
     result.out = read_bytes(out_path);
     result.err = read_bytes(err_path);
+    if (killed) result.err += "(cli_runner: killed after " + std::to_string(kCliTimeout.count()) + " s)\n";
     return result;
 }
 

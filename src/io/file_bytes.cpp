@@ -22,7 +22,10 @@ struct FileDescriptor {
 }  // namespace
 
 std::vector<unsigned char> read_file_bytes(const std::string& path) {
-    FileDescriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+    // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer
+    // forever; this way it opens at once and fails the regular-file check. It
+    // changes nothing for regular files.
+    FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
     if (file.fd < 0) fail(ErrorKind::Io, path, "cannot open: " + system_message(errno));
     struct stat st {};
     if (::fstat(file.fd, &st) != 0) fail(ErrorKind::Io, path, "cannot stat: " + system_message(errno));
