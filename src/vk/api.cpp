@@ -2,21 +2,46 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <string>
 
 #include "vkfuse/error.hpp"
 
 namespace vkfuse::vk {
 
-std::unique_ptr<Api> Api::load() {
+namespace {
+
+// The loader library: VKFUSE_VULKAN_LIBRARY when set (a loader outside the
+// library path, or a test pointing it at nothing to be a machine without
+// Vulkan), the only one tried then; else the system's libvulkan.so.1.
+void* open_loader(std::string& name) {
+    if (const char* chosen = std::getenv("VKFUSE_VULKAN_LIBRARY"); chosen && *chosen) {
+        name = chosen;
+        void* lib = dlopen(chosen, RTLD_NOW | RTLD_LOCAL);
+        if (!lib) {
+            const char* why = dlerror();
+            throw Error(ErrorKind::Device, "Vulkan loader " + name + " (VKFUSE_VULKAN_LIBRARY) cannot be loaded: " +
+                                               (why ? why : "unknown dlopen error"));
+        }
+        return lib;
+    }
+    name = "libvulkan.so.1";
     void* lib = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
     if (!lib) lib = dlopen("libvulkan.so", RTLD_NOW | RTLD_LOCAL);
     if (!lib) throw Error(ErrorKind::Device, "Vulkan loader libvulkan.so.1 not found (install libvulkan1)");
+    return lib;
+}
+
+}  // namespace
+
+std::unique_ptr<Api> Api::load() {
+    std::string name;
+    void* lib = open_loader(name);
     auto api = std::make_unique<Api>();
     api->library_ = lib;
     api->vkGetInstanceProcAddr = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(lib, "vkGetInstanceProcAddr"));
     if (!api->vkGetInstanceProcAddr)
-        throw Error(ErrorKind::Device, "Vulkan loader: vkGetInstanceProcAddr missing from libvulkan.so.1");
+        throw Error(ErrorKind::Device, "Vulkan loader: vkGetInstanceProcAddr missing from " + name);
 #define VKFUSE_LOAD_GLOBAL(name) api->name = reinterpret_cast<PFN_##name>(api->vkGetInstanceProcAddr(nullptr, #name));
     VKFUSE_GLOBAL_FUNCS(VKFUSE_LOAD_GLOBAL)
 #undef VKFUSE_LOAD_GLOBAL

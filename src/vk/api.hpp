@@ -84,7 +84,8 @@ struct Api {
     VKFUSE_DEVICE_FUNCS(VKFUSE_DECLARE)
     PFN_vkGetInstanceProcAddr vkGetInstanceProcAddr = nullptr;
 
-    // dlopen()s the loader; throws Error(Device) "Vulkan loader libvulkan.so.1 not found".
+    // dlopen()s the loader (libvulkan.so.1, or the path in VKFUSE_VULKAN_LIBRARY);
+    // throws Error(Device) "Vulkan loader libvulkan.so.1 not found".
     static std::unique_ptr<Api> load();
     void load_instance(VkInstance instance);  // instance + debug-utils entry points
     void load_device(VkDevice device);        // device entry points (throws if one is missing)
