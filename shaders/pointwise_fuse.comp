@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
-// Methods that fuse each pixel on its own: Brovey and channel-sum.
+// Methods that fuse each pixel on its own: Brovey, channel-sum and the mean
+// (the background model averages up to a few hundred frames).
 layout(local_size_x = 256) in;
 layout(push_constant, std430) uniform Push {
     Floats src;  // planes (s*K + k)*C + c
@@ -9,7 +10,7 @@ layout(push_constant, std430) uniform Push {
     uint pixels;
     uint frames;
     uint channels;
-    uint method;  // 0 brovey, 1 channel-sum
+    uint method;  // 0 brovey, 1 channel-sum, 2 mean
 } pc;
 
 void main() {
@@ -17,7 +18,17 @@ void main() {
     if (p >= pc.pixels) return;
     uint s = z / pc.channels, c = z % pc.channels;
     float result;
-    if (pc.method == 1u) {
+    if (pc.method == 2u) {
+        // Kahan-compensated: a plain float sum of 100 frames drifts by ~1e-5.
+        precise float sum = 0.0, comp = 0.0;
+        for (uint k = 0u; k < pc.frames; ++k) {
+            precise float y = pc.src.v[((s * pc.frames + k) * pc.channels + c) * pc.pixels + p] - comp;
+            precise float t = sum + y;
+            comp = (t - sum) - y;
+            sum = t;
+        }
+        result = sum / float(pc.frames);
+    } else if (pc.method == 1u) {
         // channel c comes from frame c (lit by LED c alone)
         result = pc.src.v[((s * pc.frames + c) * pc.channels + c) * pc.pixels + p];
     } else {

@@ -1,5 +1,6 @@
 // vkfuse/plan.hpp - the GPU hot path: plan once, run every sensor cycle.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -50,8 +51,9 @@ public:
 
     const PlanConfig& config() const;
 
-    // Background frame of one sensor (shape height x width x channels, type
-    // config().input). Needed before run() when background_diff is set.
+    // Background frame of one sensor (shape height x width x channels, U8 or
+    // F32 whatever config().input is: a background model is a float mean).
+    // Needed before run() when background_diff is set.
     void set_background(int sensor, const FrameView& background);
 
     // frames: sensors x frames views, sensor-major (sensor s, frame k at
@@ -62,6 +64,8 @@ public:
     const Image& fused(int sensor) const;  // requires want_fused
     Metrics metrics(int sensor) const;     // requires want_metrics
     std::vector<KernelTime> profile() const;  // requires profile
+    // Command buffers submitted so far: one per run(), whatever the sensor count.
+    std::uint64_t submits() const;
 
     struct Impl;
 

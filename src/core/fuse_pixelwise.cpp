@@ -1,6 +1,7 @@
-// The per-pixel methods: channel-sum and Brovey (SPEC.md, "Fusion methods").
+// The per-pixel methods: channel-sum, Brovey and the mean (SPEC.md, "Fusion methods").
 #include <vector>
 
+#include "core/compensated_sum.hpp"
 #include "core/fusion_methods.hpp"
 
 namespace vkfuse::core {
@@ -41,6 +42,16 @@ ImageD fuse_brovey(std::span<const ImageD> frames) {
     for (std::size_t i = 0; i < out.data.size(); ++i) {
         for (std::size_t k = 0; k < frames.size(); ++k) v[k] = frames[k].data[i];
         out.data[i] = brovey(v);
+    }
+    return out;
+}
+
+ImageD fuse_mean(std::span<const ImageD> frames) {
+    ImageD out(frames[0].height, frames[0].width, frames[0].channels);
+    for (std::size_t i = 0; i < out.data.size(); ++i) {
+        CompensatedSum sum;
+        for (const ImageD& f : frames) sum.add(f.data[i]);
+        out.data[i] = sum.value() / double(frames.size());
     }
     return out;
 }

@@ -46,6 +46,7 @@ ImageD fuse_reference(std::span<const ImageD> frames, const FusionSpec& spec) {
     switch (spec.method) {
         case Method::Passthrough: return frames[0];
         case Method::ChannelSum: return core::fuse_channel_sum(frames);
+        case Method::Mean: return core::fuse_mean(frames);
         case Method::Brovey: return core::fuse_brovey(frames);
         case Method::Laplacian:
             return per_channel(frames, [&](std::span<const core::Plane> p) {

@@ -12,6 +12,8 @@ namespace vkfuse::core {
 // Per pixel, whole images (K = 3, C = 3 for channel-sum).
 ImageD fuse_channel_sum(std::span<const ImageD> frames);
 ImageD fuse_brovey(std::span<const ImageD> frames);
+// Per pixel and channel, the mean of the K frames (compensated sum).
+ImageD fuse_mean(std::span<const ImageD> frames);
 
 // Multi-scale, one channel of every frame at a time.
 Plane fuse_laplacian(std::span<const Plane> frames, int levels, Rule base, Rule detail);

@@ -68,9 +68,12 @@ int FusionSpec::effective_levels() const {
 }
 
 std::string_view to_string(Method m) {
-    // Passthrough is internal (vkfuse metrics scores single frames), so the CLI
-    // never parses it, but it still has a name for messages.
-    return m == Method::Passthrough ? "passthrough" : name_of(kPublicMethods, m);
+    // Passthrough (vkfuse metrics scores single frames) and Mean (the background
+    // model) are internal, so the CLI never parses them, but they still have
+    // names for messages.
+    if (m == Method::Passthrough) return "passthrough";
+    if (m == Method::Mean) return "mean";
+    return name_of(kPublicMethods, m);
 }
 std::string_view to_string(Wavelet w) { return name_of(kWavelets, w); }
 std::string_view to_string(WaveletMode m) { return name_of(kModes, m); }

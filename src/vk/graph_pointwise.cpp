@@ -1,4 +1,4 @@
-// Brovey and channel-sum: one kernel, each output pixel from its K inputs.
+// Brovey, channel-sum and the mean: one kernel, each output pixel from its K inputs.
 #include "vk/plan_impl.hpp"
 
 namespace vkfuse::vk {
@@ -7,7 +7,8 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input) {
     const std::uint32_t pixels = std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height);
     const VkDeviceAddress out = g.floats(std::uint64_t(g.planes_out()) * pixels);
     const Grid grid = grid_1d(pixels, 256);
-    const bool channel_sum = g.cfg.fusion.method == Method::ChannelSum;
+    const Method method = g.cfg.fusion.method;
+    const std::uint32_t kernel_method = method == Method::Mean ? 2 : method == Method::ChannelSum ? 1 : 0;
     g.rec.dispatch("pointwise_fuse",
                    PushConstants()
                        .ptr(input)
@@ -15,9 +16,9 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input) {
                        .u32(pixels)
                        .u32(std::uint32_t(g.cfg.frames))
                        .u32(std::uint32_t(g.cfg.channels))
-                       .u32(channel_sum ? 1 : 0),
+                       .u32(kernel_method),
                    grid.x, grid.y, g.planes_out());
-    g.rec.mark(channel_sum ? "channel_sum" : "brovey");
+    g.rec.mark(method == Method::Mean ? "mean" : method == Method::ChannelSum ? "channel_sum" : "brovey");
     return out;
 }
 

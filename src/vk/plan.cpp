@@ -87,7 +87,8 @@ void Plan::Impl::record() {
     switch (cfg.fusion.method) {
         case Method::Passthrough: break;
         case Method::ChannelSum:
-        case Method::Brovey: fused_planes = record_pointwise(g, input); break;
+        case Method::Brovey:
+        case Method::Mean: fused_planes = record_pointwise(g, input); break;
         case Method::Laplacian: fused_planes = record_laplacian(g, input); break;
         case Method::Wavelet: fused_planes = record_wavelet(g, input); break;
     }
@@ -117,6 +118,7 @@ void Plan::Impl::submit_and_wait() {
         std::lock_guard lock(ctx.queue_mutex);  // plans of one context may run on several threads
         vk::check(api.vkQueueSubmit(ctx.queue, 1, &si, fence), "vkQueueSubmit");
     }
+    ++submits;
     in_flight = true;
     vk::check(api.vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()),
               "vkWaitForFences");
@@ -141,14 +143,14 @@ Plan::Impl::~Impl() { release(); }
 
 namespace {
 
-void check_view(const FrameView& v, const PlanConfig& c, const std::string& what) {
+void check_view(const FrameView& v, const PlanConfig& c, const std::string& what, bool any_type = false) {
     if (!v.data) throw Error(ErrorKind::InvalidArgument, what + ": no pixel data");
     if (v.height != c.height || v.width != c.width || v.channels != c.channels)
         throw Error(ErrorKind::Shape, what + ": shape " + std::to_string(v.height) + "x" + std::to_string(v.width) + "x" +
                                           std::to_string(v.channels) + " differs from the plan's " +
                                           std::to_string(c.height) + "x" + std::to_string(c.width) + "x" +
                                           std::to_string(c.channels));
-    if (v.type != c.input) throw Error(ErrorKind::InvalidArgument, what + ": pixel type differs from the plan's");
+    if (!any_type && v.type != c.input) throw Error(ErrorKind::InvalidArgument, what + ": pixel type differs from the plan's");
 }
 
 }  // namespace
@@ -164,7 +166,7 @@ void Plan::set_background(int sensor, const FrameView& bg) {
     if (!im.cfg.background_diff) throw Error(ErrorKind::InvalidArgument, "plan: created without background_diff");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "background: sensor " + std::to_string(sensor) + " out of range");
-    check_view(bg, im.cfg, "background of sensor " + std::to_string(sensor));
+    check_view(bg, im.cfg, "background of sensor " + std::to_string(sensor), true);
     // Backgrounds change rarely: convert to planar float here, once, on the host.
     const std::size_t pixels = std::size_t(bg.height) * bg.width, C = std::size_t(bg.channels);
     float* dst = static_cast<float*>(im.background.mapped()) + std::size_t(sensor) * pixels * C;
@@ -234,6 +236,8 @@ Metrics Plan::metrics(int sensor) const {
     if (im.cfg.background_diff) m.background_diff = double(t0[2]) / (n * im.cfg.channels);
     return m;
 }
+
+std::uint64_t Plan::submits() const { return impl_->submits; }
 
 std::vector<KernelTime> Plan::profile() const {
     auto& im = *impl_;

@@ -56,6 +56,7 @@ struct Plan::Impl {
     std::vector<bool> background_set;
     bool has_run = false;
     bool in_flight = false;  // submitted and not yet waited for
+    std::uint64_t submits = 0;
     std::vector<Image> fused;  // filled lazily from readback after a run
     std::vector<bool> fused_fresh;
 

@@ -1,0 +1,52 @@
+// BackgroundModel: the mean of N frames as a Plan with the internal Mean method.
+#include "rig/engine.hpp"
+#include "vkfuse/background.hpp"
+#include "vkfuse/error.hpp"
+#include "vkfuse/plan.hpp"
+#include "vkfuse/reference.hpp"
+
+namespace vkfuse {
+
+struct BackgroundModel::Impl {
+    Plan plan;
+};
+
+BackgroundModel::BackgroundModel(Context& context, int height, int width, int channels, int frames, PixelType input) {
+    PlanConfig cfg;
+    cfg.fusion.method = Method::Mean;
+    cfg.height = height;
+    cfg.width = width;
+    cfg.channels = channels;
+    cfg.frames = frames;
+    cfg.sensors = 1;
+    cfg.input = input;
+    cfg.want_fused = true;
+    cfg.want_metrics = false;
+    impl_ = std::make_unique<Impl>(Impl{Plan(context, cfg)});
+}
+
+BackgroundModel::~BackgroundModel() = default;
+BackgroundModel::BackgroundModel(BackgroundModel&&) noexcept = default;
+BackgroundModel& BackgroundModel::operator=(BackgroundModel&&) noexcept = default;
+
+int BackgroundModel::frames() const { return impl_->plan.config().frames; }
+
+Image BackgroundModel::mean(std::span<const FrameView> frames) {
+    if (int(frames.size()) != this->frames())
+        throw Error(ErrorKind::InvalidArgument, "background model: got " + std::to_string(frames.size()) +
+                                                    " frames, built for " + std::to_string(this->frames()));
+    impl_->plan.run(frames);
+    return impl_->plan.fused(0);
+}
+
+ImageD background_mean_reference(std::span<const FrameView> frames) {
+    if (frames.empty()) throw Error(ErrorKind::InvalidArgument, "background model: no frames");
+    std::vector<ImageD> images;
+    images.reserve(frames.size());
+    for (const FrameView& v : frames) images.push_back(rig::to_double(v));
+    FusionSpec mean;
+    mean.method = Method::Mean;
+    return fuse_reference(images, mean);
+}
+
+}  // namespace vkfuse

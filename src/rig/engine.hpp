@@ -1,0 +1,33 @@
+// rig/engine.hpp - what fuses a cycle: the GPU Plan or the CPU reference path,
+// behind one interface so the rig runs with or without a Vulkan device.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "vkfuse/context.hpp"
+#include "vkfuse/image.hpp"
+#include "vkfuse/metrics.hpp"
+#include "vkfuse/plan.hpp"
+
+namespace vkfuse::rig {
+
+class Engine {
+public:
+    virtual ~Engine() = default;
+    virtual void set_background(int sensor, const Image& background) = 0;
+    // frames sensor-major, as Plan::run.
+    virtual void run(std::span<const FrameView> frames) = 0;
+    virtual const Image& fused(int sensor) = 0;
+    virtual Metrics metrics(int sensor) = 0;
+    virtual std::uint64_t submits() const = 0;
+};
+
+// A Plan on context, or the CPU reference path when context is null (config
+// as for a Plan; want_metrics and background_diff are honoured the same way).
+std::unique_ptr<Engine> make_engine(Context* context, const PlanConfig& config);
+
+// A borrowed frame as a double image (v / 255 for 8-bit).
+ImageD to_double(const FrameView& view);
+
+}  // namespace vkfuse::rig
