@@ -12,7 +12,7 @@ void require_finite(const ImageD& image, const std::string& what) {
             for (int c = 0; c < image.channels; ++c) {
                 const double v = image.at(y, x, c);
                 if (std::isfinite(v)) continue;
-                throw Error(ErrorKind::Numeric, what + ": " + (std::isnan(v) ? "NaN" : "Inf") + " at row " +
+                throw Error(ErrorKind::Numeric, what + ": " + (std::isnan(v) ? "NaN" : v > 0 ? "Inf" : "-Inf") + " at row " +
                                                     std::to_string(y) + ", column " + std::to_string(x) +
                                                     ", channel " + std::to_string(c));
             }
