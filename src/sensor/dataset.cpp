@@ -1,0 +1,83 @@
+// Reading a dataset: the manifest, and frames as the sensor delivered them.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "io/file_bytes.hpp"
+#include "sensor/dataset_manifest.hpp"
+#include "vkfuse/dataset.hpp"
+#include "vkfuse/error.hpp"
+#include "vkfuse/io.hpp"
+
+namespace vkfuse {
+namespace {
+
+std::string join_path(const std::string& directory, const std::string& name) {
+    return (std::filesystem::path(directory) / name).string();
+}
+
+void check_unique_serials(const Dataset& d, const std::string& file) {
+    for (std::size_t i = 0; i < d.sensors.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (d.sensors[i].info.serial == d.sensors[j].info.serial)
+                throw Error(ErrorKind::Format, file + ": sensor " + d.sensors[i].info.serial + " listed twice");
+}
+
+}  // namespace
+
+const DatasetSensorRecord& Dataset::sensor(const std::string& serial) const {
+    std::string known;
+    for (const DatasetSensorRecord& s : sensors) {
+        if (s.info.serial == serial) return s;
+        known += (known.empty() ? "" : ", ") + s.info.serial;
+    }
+    throw Error(ErrorKind::InvalidArgument, directory + ": no sensor " + serial + " (has " + known + ")");
+}
+
+std::vector<std::string> Dataset::objects() const {
+    std::vector<std::string> out;
+    for (const DatasetSensorRecord& s : sensors)
+        for (const DatasetTake& t : s.takes)
+            if (!t.background && std::find(out.begin(), out.end(), t.object) == out.end()) out.push_back(t.object);
+    return out;
+}
+
+Dataset read_dataset(const std::string& directory) {
+    const std::string file = join_path(directory, sensor::kManifestName);
+    const std::vector<unsigned char> bytes = io::read_file_bytes(file);
+    const json::Value manifest =
+        json::parse(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file);
+    Dataset d = sensor::dataset_from_json(manifest, file, directory);
+    check_unique_serials(d, file);
+    return d;
+}
+
+Frame load_frame(const Dataset& dataset, const DatasetSensorRecord& sensor, const DatasetFrame& frame) {
+    const std::string path = join_path(dataset.directory, frame.file);
+    const Image image = io::read_image(path);
+    const SensorInfo& info = sensor.info;
+    if (image.height != info.height || image.width != info.width || image.channels != 3)
+        throw Error(ErrorKind::Shape, path + ": shape " + std::to_string(image.height) + "x" +
+                                          std::to_string(image.width) + "x" + std::to_string(image.channels) +
+                                          " differs from sensor " + info.serial + "'s " + std::to_string(info.height) +
+                                          "x" + std::to_string(info.width) + "x3");
+    Frame f;
+    f.index = frame.index;
+    f.timestamp = frame.timestamp;
+    f.height = image.height;
+    f.width = image.width;
+    f.illumination = frame.illumination;
+    f.pixels.resize(image.data.size());
+    // v / 255 read back from an 8-bit PNG: rounding restores the byte exactly.
+    std::transform(image.data.begin(), image.data.end(), f.pixels.begin(),
+                   [](float v) { return std::uint8_t(std::lround(double(v) * 255.0)); });
+    return f;
+}
+
+std::string illumination_dir_name(const Illumination& setting) {
+    std::string name = setting.to_string();
+    std::replace(name.begin(), name.end(), ',', '-');
+    return name;
+}
+
+}  // namespace vkfuse

@@ -1,0 +1,20 @@
+// sensor/dataset_manifest.hpp - a Dataset to and from its manifest.json.
+#pragma once
+#include <string>
+
+#include "io/json_value.hpp"
+#include "vkfuse/dataset.hpp"
+
+namespace vkfuse::sensor {
+
+inline constexpr const char* kManifestName = "manifest.json";
+inline constexpr const char* kDatasetFormat = "vkfuse-dataset";
+inline constexpr int kDatasetVersion = 1;
+
+json::Value manifest_json(const Dataset& dataset);
+
+// file names the manifest in messages; every problem is Error(Format)
+// "<file>: <where>: <problem>", e.g. "d/manifest.json: sensors[0].width: expected a positive integer".
+Dataset dataset_from_json(const json::Value& manifest, const std::string& file, const std::string& directory);
+
+}  // namespace vkfuse::sensor
