@@ -1,0 +1,124 @@
+// The capture thread of one sensor (rig/hub.hpp).
+#include <map>
+
+#include "rig/hub.hpp"
+#include "vkfuse/error.hpp"
+#include "vkfuse/reference.hpp"
+
+namespace vkfuse::rig {
+namespace {
+
+// Runs f under the work lock unless the rig is stopping; false if it was.
+template <class F>
+bool guarded(Hub& hub, F&& f) {
+    std::lock_guard lock(hub.work_mutex);
+    if (hub.stop) return false;
+    f();
+    return true;
+}
+
+Switcher make_switcher(const CaptureJob& job) {
+    Sensor& sensor = *job.sensor.sensor;
+    if (job.config->judging == FrameJudging::Label) return Switcher::labelled(sensor);
+    if (!job.sensor.clock) throw Error(ErrorKind::InvalidArgument, "judging frames by timing needs the sensor's clock");
+    const SwitchTiming timing = measure_switch_timing(sensor, *job.sensor.clock, job.config->calibration);
+    {
+        std::lock_guard lock(job.hub->mutex);
+        job.hub->slots[job.index].timing = timing;
+    }
+    return Switcher(sensor, job.sensor.clock, timing);
+}
+
+// One mean per distinct setting of the sequence, with nothing pressed.
+// Returns false if the rig stopped meanwhile.
+bool capture_background(const CaptureJob& job, Switcher& switcher, std::vector<Image>& out) {
+    const RigConfig& cfg = *job.config;
+    std::map<std::string, Image> means;
+    for (const Illumination& setting : cfg.sequence) {
+        auto known = means.find(setting.to_string());
+        if (known != means.end()) {
+            out.push_back(known->second);
+            continue;
+        }
+        const std::vector<Frame> frames = switcher.capture(setting, cfg.background_frames);
+        std::vector<FrameView> views;
+        for (const Frame& f : frames) views.push_back(f.view());
+        Image mean;
+        const bool ran = guarded(*job.hub, [&] {
+            if (cfg.on_background) cfg.on_background(job.index, setting, frames);
+            mean = job.hub->average(views);
+        });
+        if (!ran) return false;
+        means.emplace(setting.to_string(), mean);
+        out.push_back(std::move(mean));
+    }
+    return true;
+}
+
+// Hands one cycle to the rig, waiting while the previous one is still there.
+bool deliver(Hub& hub, SensorSlot& slot, std::vector<Frame> frames) {
+    std::unique_lock lock(hub.mutex);
+    hub.changed.wait(lock, [&] { return hub.stop || !slot.ready; });
+    if (hub.stop) return false;
+    slot.ready = std::move(frames);
+    hub.changed.notify_all();
+    return true;
+}
+
+void run_capture(const CaptureJob& job) {
+    Hub& hub = *job.hub;
+    SensorSlot& slot = hub.slots[job.index];
+    Switcher switcher = make_switcher(job);
+    std::vector<Image> background;
+    if (job.config->background_frames > 0 && !capture_background(job, switcher, background)) return;
+    {
+        std::lock_guard lock(hub.mutex);
+        slot.background = std::move(background);
+        slot.background_done = true;
+    }
+    hub.changed.notify_all();
+    const auto& after = job.config->after_background;
+    if (!guarded(hub, [&] {
+            if (after) after(job.index);
+        }))
+        return;
+    while (deliver(hub, slot, switcher.next_cycle(job.config->sequence))) {
+    }
+}
+
+}  // namespace
+
+Image Hub::average(std::span<const FrameView> frames) {
+    if (!context) return convert<float>(background_mean_reference(frames));
+    if (!model || model->frames() != int(frames.size()))
+        model = std::make_unique<BackgroundModel>(*context, frames[0].height, frames[0].width, frames[0].channels,
+                                                  int(frames.size()));
+    return model->mean(frames);
+}
+
+std::string with_serial(const std::string& serial, const std::string& message) {
+    return message.rfind(serial, 0) == 0 ? message : serial + ": " + message;
+}
+
+void capture_main(CaptureJob job) {
+    Hub& hub = *job.hub;
+    SensorSlot& slot = hub.slots[job.index];
+    std::string error;
+    try {
+        run_capture(job);
+    } catch (const std::exception& e) {
+        error = e.what();
+        if (error.empty()) error = "unknown error";
+    } catch (...) {
+        error = "unknown error";
+    }
+    std::lock_guard lock(hub.mutex);
+    if (!error.empty()) {
+        slot.failed = true;
+        slot.error = with_serial(slot.serial, error);
+    }
+    slot.exited = true;
+    hub.changed.notify_all();
+}
+
+}  // namespace vkfuse::rig

@@ -1,0 +1,66 @@
+// rig/hub.hpp - what the capture threads and the rig share, and the capture
+// thread itself.
+#pragma once
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vkfuse/background.hpp"
+#include "vkfuse/rig.hpp"
+
+namespace vkfuse::rig {
+
+// One sensor's mailbox and state. Written by its capture thread, read by the
+// rig, always under Hub::mutex.
+struct SensorSlot {
+    std::string serial;
+    std::optional<std::vector<Frame>> ready;  // a complete cycle the rig has not taken yet
+    std::optional<SwitchTiming> timing;
+    bool background_done = false;
+    bool background_applied = false;  // rig side: handed to the fusion engine
+    std::vector<Image> background;    // per slot of the sequence
+    bool failed = false;
+    std::string error;
+    bool exited = false;
+};
+
+// Owned through shared_ptr by the rig and every capture thread, so a thread
+// left behind in a stuck sensor call never outlives what it touches.
+struct Hub {
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::vector<SensorSlot> slots;  // sized before the threads start, never resized
+    bool stop = false;
+
+    // Work that touches objects the Rig or its caller own (the Vulkan context
+    // through the background model, the caller's callbacks) runs under
+    // work_mutex and only while !stop: ~Rig sets stop, then takes work_mutex
+    // once, and after that no thread touches them again.
+    std::mutex work_mutex;
+    Context* context = nullptr;              // null: CPU background means
+    std::unique_ptr<BackgroundModel> model;  // built on first use
+
+    // The mean of frames; call with work_mutex held.
+    Image average(std::span<const FrameView> frames);
+};
+
+struct CaptureJob {
+    std::size_t index = 0;
+    RigSensor sensor;
+    std::shared_ptr<const RigConfig> config;
+    std::shared_ptr<Hub> hub;
+};
+
+// The body of one sensor's capture thread: calibrate, background, then cycles
+// into the mailbox until the hub stops. Never throws: a failure is recorded
+// in the slot with the serial.
+void capture_main(CaptureJob job);
+
+// message prefixed with "<serial>: " unless it already names the serial first.
+std::string with_serial(const std::string& serial, const std::string& message);
+
+}  // namespace vkfuse::rig

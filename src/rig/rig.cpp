@@ -1,0 +1,308 @@
+// Rig: capture threads feed a mailbox each; next() fuses whatever the cycle
+// brought with one submit (include/vkfuse/rig.hpp).
+#include "vkfuse/rig.hpp"
+
+#include <chrono>
+#include <thread>
+
+#include "rig/engine.hpp"
+#include "rig/hub.hpp"
+#include "vkfuse/error.hpp"
+
+namespace vkfuse {
+namespace {
+
+using WallClock = std::chrono::steady_clock;
+
+WallClock::time_point after(double seconds) {
+    return WallClock::now() + std::chrono::duration_cast<WallClock::duration>(std::chrono::duration<double>(seconds));
+}
+
+double seconds_since(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }
+
+void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors) {
+    if (sensors.empty()) throw Error(ErrorKind::InvalidArgument, "rig: no sensors");
+    if (cfg.sequence.empty()) throw Error(ErrorKind::InvalidArgument, "rig: empty illumination sequence");
+    if (cfg.background_frames < 0) throw Error(ErrorKind::InvalidArgument, "rig: background_frames must be >= 0");
+    if (!(cfg.cycle_timeout_s > 0) || !(cfg.startup_timeout_s > 0))
+        throw Error(ErrorKind::InvalidArgument, "rig: timeouts must be > 0");
+    for (const RigSensor& s : sensors)
+        if (!s.sensor) throw Error(ErrorKind::InvalidArgument, "rig: null sensor");
+}
+
+}  // namespace
+
+struct Rig::Impl {
+    Context* context;
+    std::shared_ptr<const RigConfig> cfg;
+    std::vector<RigSensor> sensors;
+    std::shared_ptr<rig::Hub> hub = std::make_shared<rig::Hub>();
+    std::vector<std::thread> threads;
+    int height = 0, width = 0;
+    std::unique_ptr<rig::Engine> engine;     // one submit per cycle for all sensors
+    std::unique_ptr<rig::Engine> bg_engine;  // fuses background means the way frames are fused
+    std::vector<std::vector<Frame>> last_good;
+    std::vector<bool> lagging;  // timed out and not delivered since: not waited for
+    std::vector<std::uint8_t> black;
+    std::uint64_t cycle = 0;
+    bool started = false;
+
+    Impl(Context* c, RigConfig config, std::vector<RigSensor> s);
+    PlanConfig plan_config(PixelType input, bool metrics) const;
+    bool cycle_ready() const;  // call with hub->mutex held
+    void await_startup();
+    void take_cycle(CycleResult& result);
+    void fuse(CycleResult& result);
+    void apply_new_backgrounds();
+    void stop_threads();
+    std::vector<FrameView> views_for(const std::vector<SensorCycle>& sensors) const;
+};
+
+Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
+    : context(c), cfg(std::make_shared<const RigConfig>(std::move(config))), sensors(std::move(s)) {
+    check_config(*cfg, sensors);
+    hub->context = context;
+    hub->slots.resize(sensors.size());
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+        const SensorInfo info = sensors[i].sensor->info();
+        for (const Illumination& setting : cfg->sequence) setting.check(info.leds);
+        if (i == 0) {
+            height = info.height;
+            width = info.width;
+        } else if (info.height != height || info.width != width) {
+            throw Error(ErrorKind::Shape, info.serial + ": frames of " + std::to_string(info.width) + "x" +
+                                              std::to_string(info.height) + " differ from " + hub->slots[0].serial +
+                                              "'s " + std::to_string(width) + "x" + std::to_string(height));
+        }
+        hub->slots[i].serial = info.serial;
+    }
+    engine = rig::make_engine(context, plan_config(PixelType::U8, true));
+    if (cfg->background_frames > 0) {
+        const Image zero(height, width, 3);  // until a sensor's own background is in
+        for (std::size_t i = 0; i < sensors.size(); ++i) engine->set_background(int(i), zero);
+    }
+    last_good.resize(sensors.size());
+    lagging.assign(sensors.size(), false);
+    black.assign(std::size_t(height) * std::size_t(width) * 3, 0);
+}
+
+PlanConfig Rig::Impl::plan_config(PixelType input, bool metrics) const {
+    PlanConfig p;
+    p.fusion = cfg->fusion;
+    p.height = height;
+    p.width = width;
+    p.channels = 3;
+    p.frames = int(cfg->sequence.size());
+    p.sensors = int(sensors.size());
+    p.input = input;
+    p.want_fused = cfg->want_fused || !metrics;
+    p.want_metrics = metrics;
+    p.background_diff = metrics && cfg->background_frames > 0;
+    return p;
+}
+
+// Every sensor still in step has delivered, and there is something to fuse
+// (or nothing left that could deliver).
+bool Rig::Impl::cycle_ready() const {
+    bool any_ready = false, any_alive = false;
+    for (std::size_t i = 0; i < hub->slots.size(); ++i) {
+        const rig::SensorSlot& slot = hub->slots[i];
+        if (slot.failed) continue;
+        any_alive = true;
+        if (slot.ready)
+            any_ready = true;
+        else if (!lagging[i])
+            return false;
+    }
+    return any_ready || !any_alive;
+}
+
+// Backgrounds that arrived since the last cycle are fused like frames (one
+// submit for all of them) and become those sensors' reference for D.
+void Rig::Impl::apply_new_backgrounds() {
+    std::vector<std::vector<Image>> fresh(sensors.size());
+    bool any = false;
+    {
+        std::lock_guard lock(hub->mutex);
+        for (std::size_t i = 0; i < sensors.size(); ++i) {
+            rig::SensorSlot& slot = hub->slots[i];
+            if (!slot.background_done || slot.background_applied || slot.background.empty()) continue;
+            fresh[i] = slot.background;
+            slot.background_applied = true;
+            any = true;
+        }
+    }
+    if (!any) return;
+    if (!bg_engine) bg_engine = rig::make_engine(context, plan_config(PixelType::F32, false));
+    const Image zero(height, width, 3);
+    std::vector<FrameView> views;
+    for (const auto& means : fresh)
+        for (std::size_t k = 0; k < cfg->sequence.size(); ++k)
+            views.push_back(FrameView::of(means.empty() ? zero : means[k]));
+    bg_engine->run(views);
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+        if (!fresh[i].empty()) engine->set_background(int(i), bg_engine->fused(int(i)));
+}
+
+std::vector<FrameView> Rig::Impl::views_for(const std::vector<SensorCycle>& results) const {
+    std::vector<FrameView> views;
+    const std::size_t K = cfg->sequence.size();
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const std::vector<Frame>& frames = results[i].status == SensorStatus::Ok ? results[i].frames : last_good[i];
+        for (std::size_t k = 0; k < K; ++k)
+            views.push_back(frames.empty() ? FrameView{black.data(), height, width, 3, PixelType::U8}
+                                           : frames[k].view());
+    }
+    return views;
+}
+
+void Rig::Impl::stop_threads() {
+    {
+        std::lock_guard lock(hub->mutex);
+        hub->stop = true;
+    }
+    hub->changed.notify_all();
+    {
+        // Waits out a background mean or callback in progress; none starts after.
+        std::lock_guard work(hub->work_mutex);
+        hub->model.reset();
+    }
+    std::unique_lock lock(hub->mutex);
+    hub->changed.wait_until(lock, after(cfg->cycle_timeout_s), [&] {
+        for (std::size_t i = 0; i < threads.size(); ++i)
+            if (!hub->slots[i].exited) return false;
+        return true;
+    });
+    for (std::size_t i = 0; i < threads.size(); ++i) {
+        // A thread still inside a sensor call cannot be interrupted; it holds
+        // its own references to everything it uses and exits when the call returns.
+        if (hub->slots[i].exited)
+            threads[i].join();
+        else
+            threads[i].detach();
+    }
+    threads.clear();
+}
+
+Rig::Rig(Context* context, RigConfig config, std::vector<RigSensor> sensors)
+    : impl_(std::make_unique<Impl>(context, std::move(config), std::move(sensors))) {}
+
+Rig::~Rig() { impl_->stop_threads(); }
+
+// Waits until every sensor has its background or failed (or the start-up
+// timeout); sensors still calibrating then are not waited for by cycles.
+// Throws the sensors' errors when none got that far.
+void Rig::Impl::await_startup() {
+    std::unique_lock lock(hub->mutex);
+    hub->changed.wait_until(lock, after(cfg->startup_timeout_s), [&] {
+        for (const rig::SensorSlot& s : hub->slots)
+            if (!s.failed && !s.background_done) return false;
+        return true;
+    });
+    bool any_up = false;
+    std::string errors;
+    for (std::size_t i = 0; i < hub->slots.size(); ++i) {
+        const rig::SensorSlot& s = hub->slots[i];
+        any_up = any_up || s.background_done;
+        if (s.failed) errors += (errors.empty() ? "" : "; ") + s.error;
+        lagging[i] = !s.failed && !s.background_done;
+    }
+    if (any_up) return;
+    if (errors.empty()) errors = "rig: no sensor calibrated within " + std::to_string(cfg->startup_timeout_s) + " s";
+    throw Error(ErrorKind::Device, errors);
+}
+
+void Rig::start() {
+    auto& im = *impl_;
+    if (im.started) throw Error(ErrorKind::InvalidArgument, "rig: already started");
+    im.started = true;
+    for (std::size_t i = 0; i < im.sensors.size(); ++i)
+        im.threads.emplace_back(rig::capture_main, rig::CaptureJob{i, im.sensors[i], im.cfg, im.hub});
+    im.await_startup();
+    im.apply_new_backgrounds();
+}
+
+// Takes every mailbox that is full once the cycle is ready (or the timeout
+// passed), and says what happened to each sensor.
+void Rig::Impl::take_cycle(CycleResult& result) {
+    std::unique_lock lock(hub->mutex);
+    hub->changed.wait_until(lock, after(cfg->cycle_timeout_s), [&] { return cycle_ready(); });
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+        rig::SensorSlot& slot = hub->slots[i];
+        SensorCycle& r = result.sensors[i];
+        r.serial = slot.serial;
+        if (slot.ready) {
+            r.frames = std::move(*slot.ready);
+            slot.ready.reset();
+        } else if (slot.failed) {
+            r.status = SensorStatus::Failed;
+            r.error = slot.error;
+        } else {
+            r.status = SensorStatus::Timeout;
+            r.error = slot.serial + ": no frames within " + std::to_string(cfg->cycle_timeout_s) + " s (cycle " +
+                      std::to_string(result.cycle) + ")";
+        }
+    }
+    lock.unlock();
+    hub->changed.notify_all();  // mailboxes are free again
+}
+
+void Rig::Impl::fuse(CycleResult& result) {
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+        const bool ok = result.sensors[i].status == SensorStatus::Ok;
+        if (ok) last_good[i] = result.sensors[i].frames;
+        lagging[i] = !ok;
+    }
+    engine->run(views_for(result.sensors));
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+        SensorCycle& r = result.sensors[i];
+        if (r.status != SensorStatus::Ok) continue;
+        r.metrics = engine->metrics(int(i));
+        if (cfg->want_fused) r.fused = &engine->fused(int(i));
+    }
+}
+
+CycleResult Rig::next() {
+    auto& im = *impl_;
+    if (!im.started) throw Error(ErrorKind::InvalidArgument, "rig: next() before start()");
+    CycleResult result;
+    result.cycle = im.cycle++;
+    result.sensors.resize(im.sensors.size());
+    const auto wait_start = WallClock::now();
+    im.take_cycle(result);
+    result.capture_wait_s = seconds_since(wait_start);
+    im.apply_new_backgrounds();
+    const auto fuse_start = WallClock::now();
+    im.fuse(result);
+    result.fuse_s = seconds_since(fuse_start);
+    return result;
+}
+
+std::size_t Rig::sensors() const { return impl_->sensors.size(); }
+
+std::string Rig::serial(std::size_t sensor) const { return impl_->hub->slots.at(sensor).serial; }
+
+std::optional<SwitchTiming> Rig::timing(std::size_t sensor) const {
+    std::lock_guard lock(impl_->hub->mutex);
+    return impl_->hub->slots.at(sensor).timing;
+}
+
+bool Rig::all_failed() const {
+    std::lock_guard lock(impl_->hub->mutex);
+    for (const rig::SensorSlot& s : impl_->hub->slots)
+        if (!s.failed || s.ready) return false;  // a cycle delivered before failing still counts
+    return true;
+}
+
+std::uint64_t Rig::submits() const { return impl_->engine->submits(); }
+
+std::string_view to_string(SensorStatus status) {
+    switch (status) {
+        case SensorStatus::Ok: return "ok";
+        case SensorStatus::Timeout: return "timeout";
+        case SensorStatus::Failed: return "failed";
+    }
+    return "?";
+}
+
+}  // namespace vkfuse
