@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 
 #include "vkfuse/error.hpp"
 
@@ -35,6 +36,11 @@ Args Args::parse(const CommandSpec& spec, std::span<const std::string> argv) {
         std::string name = arg.substr(0, eq);
         const OptionSpec* option = find_option(spec, name);
         if (!option) args.usage_error("unknown option " + name);
+        if (option->is_flag()) {
+            if (eq != std::string::npos) args.usage_error("option " + name + " takes no value");
+            args.values_[std::string(option->name)] = "";
+            continue;
+        }
         if (eq == std::string::npos && i + 1 == argv.size())
             args.usage_error("option " + name + " needs a value " + std::string(option->value));
         args.values_[std::string(option->name)] = eq == std::string::npos ? argv[++i] : arg.substr(eq + 1);
@@ -70,8 +76,8 @@ bool wants_help(std::span<const std::string> argv) {
 std::string help_text(const CommandSpec& spec) {
     std::string text = "Usage: " + std::string(spec.usage) + "\n\n" + std::string(spec.details) + "\n\nOptions:\n";
     auto label = [](const OptionSpec& o) {
-        return (o.alias.empty() ? std::string(o.name) : std::string(o.name) + ", " + std::string(o.alias)) + " " +
-               std::string(o.value);
+        return (o.alias.empty() ? std::string(o.name) : std::string(o.name) + ", " + std::string(o.alias)) +
+               (o.is_flag() ? "" : " " + std::string(o.value));
     };
     std::size_t width = std::string_view("-h, --help").size();
     for (const OptionSpec& o : spec.options) width = std::max(width, label(o).size());
@@ -90,6 +96,25 @@ int parse_positive_int(std::string_view option, const std::string& text) {
     if (ec != std::errc() || ptr != end || value < 1)
         throw Error(ErrorKind::InvalidArgument,
                     std::string(option) + " " + text + ": expected a positive integer");
+    return value;
+}
+
+int parse_count(std::string_view option, const std::string& text) {
+    int value = 0;
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end || value < 0)
+        throw Error(ErrorKind::InvalidArgument, std::string(option) + " " + text + ": expected a non-negative integer");
+    return value;
+}
+
+double parse_seconds(std::string_view option, const std::string& text) {
+    double value = 0;
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value) || value <= 0)
+        throw Error(ErrorKind::InvalidArgument,
+                    std::string(option) + " " + text + ": expected a positive number of seconds");
     return value;
 }
 

@@ -9,12 +9,15 @@
 
 namespace vkfuse::cli {
 
-// One option of a subcommand; every option takes exactly one value.
+// One option of a subcommand: it takes exactly one value, or none when value
+// is empty (a flag such as --virtual-clock).
 struct OptionSpec {
     std::string_view name;   // "--levels", or "-o"
     std::string_view alias;  // "--output", or empty
-    std::string_view value;  // how help names the value: "L"
+    std::string_view value;  // how help names the value: "L"; empty for a flag
     std::string_view help;   // one line, saying the default
+
+    bool is_flag() const { return value.empty(); }
 };
 
 // What a subcommand accepts and how --help describes it.
@@ -36,6 +39,8 @@ public:
     static Args parse(const CommandSpec& spec, std::span<const std::string> argv);
 
     std::optional<std::string> value(std::string_view name) const;
+    // Whether a flag (or any option) was given.
+    bool has(std::string_view name) const { return value(name).has_value(); }
     // The value of a required option; throws "<command>: missing -o OUT (see ...)" when absent.
     std::string required(std::string_view name) const;
     const std::vector<std::string>& operands() const { return operands_; }
@@ -58,5 +63,9 @@ std::string help_text(const CommandSpec& spec);
 
 // A positive decimal int; throws Error(InvalidArgument) "--levels abc: expected a positive integer".
 int parse_positive_int(std::string_view option, const std::string& text);
+// A decimal int >= 0; throws Error(InvalidArgument) "--frames x: expected a non-negative integer".
+int parse_count(std::string_view option, const std::string& text);
+// A finite decimal number > 0; throws Error(InvalidArgument) "--duration x: expected a positive number of seconds".
+double parse_seconds(std::string_view option, const std::string& text);
 
 }  // namespace vkfuse::cli

@@ -3,6 +3,7 @@
 
 #include "backend.hpp"
 #include "commands.hpp"
+#include "fusion_options.hpp"
 #include "inputs.hpp"
 #include "vkfuse/io.hpp"
 #include "vkfuse/plan.hpp"
@@ -13,11 +14,11 @@ namespace {
 
 constexpr OptionSpec kOptions[] = {
     {"--method", "", "M", "channel-sum, brovey, laplacian or wavelet (required)"},
-    {"--levels", "", "L", "pyramid or DWT levels (default: laplacian 4, wavelet 3)"},
-    {"--wavelet", "", "W", "haar, db2, bior2.2 or bior4.4 (default bior4.4)"},
-    {"--mode", "", "MODE", "DWT border: periodization or symmetric (default periodization)"},
-    {"--base-rule", "", "R", "rule for the approximation / pyramid top: max-abs, mean, max, min (default mean)"},
-    {"--detail-rule", "", "R", "rule for detail bands / Laplacian levels (default max-abs)"},
+    kLevelsOption,
+    kWaveletOption,
+    kModeOption,
+    kBaseRuleOption,
+    kDetailRuleOption,
     kBackendOption,
     {"-o", "--output", "OUT", "output image, .npy (float32, unclamped) or .png (8-bit, clamped) (required)"},
 };
@@ -32,17 +33,6 @@ constexpr CommandSpec kSpec{
     kOptions,
     "vkfuse fuse --method wavelet --levels 3 --wavelet bior4.4 -o fused.npy red.png green.png blue.png",
 };
-
-FusionSpec fusion_spec(const Args& args) {
-    FusionSpec spec;
-    spec.method = parse_method(args.required("--method"));
-    if (auto v = args.value("--levels")) spec.levels = parse_positive_int("--levels", *v);
-    if (auto v = args.value("--wavelet")) spec.wavelet = parse_wavelet(*v);
-    if (auto v = args.value("--mode")) spec.mode = parse_wavelet_mode(*v);
-    if (auto v = args.value("--base-rule")) spec.base_rule = parse_rule(*v, "--base-rule");
-    if (auto v = args.value("--detail-rule")) spec.detail_rule = parse_rule(*v, "--detail-rule");
-    return spec;
-}
 
 Image fuse_on_cpu(const FusionSpec& spec, const std::vector<Input>& inputs) {
     std::vector<ImageD> frames;
@@ -71,7 +61,9 @@ Image fuse_on_vulkan(Context& context, const FusionSpec& spec, const std::vector
 }
 
 int run(const Args& args) {
-    FusionSpec spec = fusion_spec(args);
+    FusionSpec spec;
+    spec.method = parse_method(args.required("--method"));
+    spec = fusion_options(args, spec);
     std::string output = args.required("-o");
     BackendChoice backend = parse_backend(args.value("--backend").value_or("auto"));
     if (args.operands().empty()) args.usage_error("no input images");
