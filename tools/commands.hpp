@@ -14,5 +14,7 @@ struct Command {
 extern const Command fuse_command;
 extern const Command metrics_command;
 extern const Command info_command;
+extern const Command run_command;
+extern const Command sim_command;
 
 }  // namespace vkfuse::cli

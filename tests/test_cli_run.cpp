@@ -1,0 +1,129 @@
+// vkfuse run end to end: the default simulated coin, sixteen sensors with one
+// submit per cycle, and a recorded run replayed bit for bit.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "cli_runner.hpp"
+#include "vkfuse/io.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
+        lines.push_back(text.substr(start, end - start));
+    return lines;
+}
+
+bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+
+std::vector<std::string> files_under(const std::string& dir) {
+    std::vector<std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (e.is_regular_file()) out.push_back(fs::relative(e.path(), dir).string());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+TEST(CliRun, SimulatedCoinWithOutputs) {
+    TempDir tmp;
+    const CliResult r =
+        run_cli({"run", "--virtual-clock", "--cycles", "3", "--background-frames", "2", "--out", tmp.file("out")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_EQ(lines_of(r.out).size(), 1u) << r.out;
+    EXPECT_TRUE(has(r.out, "\"cycles\": 3, \"sensors\": 1, \"submits\": 3, \"fused\": 3,")) << r.out;
+    EXPECT_TRUE(has(r.out, "\"switch_timing\": {\"SIM-0001\": {\"frame_period_s\": ")) << r.out;
+    const std::vector<std::string> metrics = lines_of(read_bytes(tmp.file("out/metrics.jsonl")));
+    ASSERT_EQ(metrics.size(), 3u);
+    for (const std::string& m : metrics) {
+        EXPECT_TRUE(has(m, "\"sensor\": \"SIM-0001\", \"status\": \"ok\", \"object\": \"coin\"")) << m;
+        EXPECT_TRUE(has(m, "\"background_diff\": ")) << m;
+    }
+    EXPECT_EQ(
+        files_under(tmp.file("out")),
+        (std::vector<std::string>{"fused/SIM-0001/000000.png", "fused/SIM-0001/000001.png", "fused/SIM-0001/000002.png",
+                                  "metrics.jsonl", "side_by_side/coin_SIM-0001.png", "summary.json"}));
+    const Image pair = io::read_image(tmp.file("out/side_by_side/coin_SIM-0001.png"));
+    EXPECT_EQ(pair.width, 2 * 320 + 8);
+    EXPECT_EQ(pair.height, 240);
+    EXPECT_EQ(read_bytes(tmp.file("out/summary.json")), r.out);
+}
+
+TEST(CliRun, SixteenSensorsOneSubmitPerCycle) {
+    TempDir tmp;
+    const CliResult r = run_cli({"run", "--sensors", "16", "--cycles", "2", "--virtual-clock", "--background-frames",
+                                 "1", "--method", "brovey", "--out", tmp.file("out")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(has(r.out, "\"cycles\": 2, \"sensors\": 16, \"submits\": 2, \"fused\": 32,")) << r.out;
+    const std::vector<std::string> metrics = lines_of(read_bytes(tmp.file("out/metrics.jsonl")));
+    ASSERT_EQ(metrics.size(), 32u);
+    EXPECT_TRUE(has(metrics[15], "\"cycle\": 0, \"sensor\": \"SIM-0016\", \"status\": \"ok\"")) << metrics[15];
+    EXPECT_TRUE(has(metrics[16], "\"cycle\": 1, \"sensor\": \"SIM-0001\", \"status\": \"ok\"")) << metrics[16];
+}
+
+TEST(CliRun, ReplayReproducesTheRecordedRun) {
+    TempDir tmp;
+    const std::vector<std::string> common{"--sequence", "15,15,15+0,15,0+15,0,0", "--method", "laplacian"};
+    std::vector<std::string> live{"run",   "--virtual-clock",     "--sensors", "2",        "--cycles",
+                                  "3",     "--background-frames", "2",         "--record", tmp.file("rec"),
+                                  "--out", tmp.file("live")};
+    live.insert(live.end(), common.begin(), common.end());
+    const CliResult recorded = run_cli(live);
+    ASSERT_EQ(recorded.status, 0) << recorded.err;
+    // Sequence and method come from the recording.
+    const CliResult replayed = run_cli({"run", "--replay", tmp.file("rec"), "--out", tmp.file("again")});
+    ASSERT_EQ(replayed.status, 0) << replayed.err;
+    EXPECT_TRUE(has(replayed.out, "\"cycles\": 3, \"sensors\": 2, \"submits\": 3, \"fused\": 6,")) << replayed.out;
+    EXPECT_EQ(read_bytes(tmp.file("again/metrics.jsonl")), read_bytes(tmp.file("live/metrics.jsonl")));
+    const std::vector<std::string> files = files_under(tmp.file("live"));
+    EXPECT_EQ(files_under(tmp.file("again")), files);
+    for (const std::string& f : files) {
+        if (f.rfind("fused/", 0) == 0) {
+            EXPECT_EQ(read_bytes(tmp.file("again/" + f)), read_bytes(tmp.file("live/" + f))) << f;
+        }
+    }
+}
+
+// SIGINT: the run finishes the cycle in hand, flushes its files and exits 0.
+TEST(CliRun, InterruptFinishesTheCycleAndFlushes) {
+    TempDir tmp;
+    const std::string out = tmp.file("out");
+    std::vector<std::string> words{
+        VKFUSE_CLI, "run", "--virtual-clock", "--background-frames", "1", "--method", "brovey", "--out", out};
+    std::vector<char*> argv = c_strings(words);
+    pid_t pid = 0;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, tmp.file("stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    ASSERT_EQ(posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    // Wait until it has fused a few cycles, then interrupt.
+    for (int i = 0;
+         i < 600 && (!fs::exists(out + "/metrics.jsonl") || lines_of(read_bytes(out + "/metrics.jsonl")).size() < 2);
+         ++i)
+        usleep(100000);
+    kill(pid, SIGINT);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    const std::string summary = read_bytes(tmp.file("stdout"));
+    EXPECT_EQ(read_bytes(out + "/summary.json"), summary);
+    const std::size_t cycles = lines_of(read_bytes(out + "/metrics.jsonl")).size();
+    EXPECT_GE(cycles, 2u);
+    EXPECT_TRUE(has(summary, "\"cycles\": " + std::to_string(cycles) + ",")) << summary;
+    EXPECT_TRUE(fs::exists(out + "/side_by_side/coin_SIM-0001.png"));
+}
+
+}  // namespace
+}  // namespace vkfuse::test

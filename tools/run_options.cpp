@@ -1,0 +1,103 @@
+#include "run_options.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "fusion_options.hpp"
+#include "vkfuse/error.hpp"
+#include "vkfuse/sim_digit.hpp"
+
+namespace vkfuse::cli {
+namespace {
+
+[[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::InvalidArgument, message); }
+
+IlluminationSequence sequence_option(const std::string& text, const LedLayout& leds) {
+    try {
+        IlluminationSequence seq = parse_sequence(text);
+        for (const Illumination& s : seq) s.check(leds);
+        return seq;
+    } catch (const Error& e) {
+        fail("--sequence " + text + ": " + e.what());
+    }
+}
+
+void check_object(const std::string& object) {
+    const std::vector<std::string> known = SimDigit::objects();
+    // "coin" is the documented other name of "coin-heads".
+    if (object == "coin" || std::find(known.begin(), known.end(), object) != known.end()) return;
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    fail("--object " + object + ": unknown object (expected " + list + ")");
+}
+
+void check_replay_conflicts(const Args& args) {
+    for (const char* option : {"--sensors", "--background-frames", "--virtual-clock", "--camera-auto"})
+        if (args.has(option))
+            args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
+}
+
+// base, or base with the method --method names.
+FusionSpec with_method(const Args& args, FusionSpec base) {
+    if (auto v = args.value("--method")) base.method = parse_method(*v);
+    return base;
+}
+
+// A dataset from `vkfuse sim` keeps no run settings: as many background frames
+// per setting as every sensor holds for every setting of the sequence.
+int recorded_background_frames(const Dataset& d, const IlluminationSequence& sequence) {
+    std::size_t fewest = std::numeric_limits<std::size_t>::max();
+    for (const DatasetSensorRecord& s : d.sensors) {
+        for (const Illumination& setting : sequence) {
+            std::size_t n = 0;
+            for (const DatasetTake& t : s.takes)
+                if (t.background)
+                    n += std::size_t(std::count_if(t.frames.begin(), t.frames.end(),
+                                                   [&](const DatasetFrame& f) { return f.illumination == setting; }));
+            fewest = std::min(fewest, n);
+        }
+    }
+    return int(fewest);
+}
+
+}  // namespace
+
+RunOptions parse_run_options(const Args& args) {
+    if (!args.operands().empty()) args.usage_error("unexpected operand " + args.operands().front());
+    RunOptions o;
+    o.replay = args.value("--replay");
+    if (o.replay) check_replay_conflicts(args);
+    if (auto v = args.value("--sensors")) o.sensors = parse_positive_int("--sensors", *v);
+    if (o.sensors > kMaxSimulatedSensors)
+        fail("--sensors " + std::to_string(o.sensors) + ": at most " + std::to_string(kMaxSimulatedSensors));
+    if (auto v = args.value("--object")) o.object = *v;
+    if (!o.replay) check_object(o.object);
+    o.sequence = sequence_option(args.value("--sequence").value_or(kDefaultSequence), LedLayout::digit());
+    o.fusion = fusion_options(args, with_method(args, FusionSpec{}));
+    o.backend = parse_backend(args.value("--backend").value_or("auto"));
+    if (auto v = args.value("--cycles")) o.cycles = parse_positive_int("--cycles", *v);
+    if (auto v = args.value("--duration")) o.duration_s = parse_seconds("--duration", *v);
+    o.virtual_clock = args.has("--virtual-clock");
+    o.camera_auto = args.has("--camera-auto");
+    o.record = args.value("--record");
+    o.out = args.value("--out");
+    o.background_frames = kDefaultBackgroundFrames;
+    if (auto v = args.value("--background-frames")) o.background_frames = parse_count("--background-frames", *v);
+    if (auto v = args.value("--timeout")) o.timeout_s = parse_seconds("--timeout", *v);
+    return o;
+}
+
+void adopt_recording(RunOptions& o, const Args& args, const Dataset& d) {
+    if (d.sensors.empty()) fail(d.directory + ": the dataset has no sensors");
+    if (d.run && !args.has("--sequence")) o.sequence = d.run->sequence;
+    if (d.run) o.fusion = fusion_options(args, with_method(args, d.run->fusion));
+    const std::vector<std::string> objects = d.objects();
+    if (!args.has("--object")) {
+        if (objects.empty()) fail(d.directory + ": the dataset holds no object frames");
+        o.object = objects.front();
+    }
+    o.sensors = int(d.sensors.size());
+    o.background_frames = d.run ? d.run->background_frames : recorded_background_frames(d, o.sequence);
+}
+
+}  // namespace vkfuse::cli

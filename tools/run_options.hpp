@@ -1,0 +1,42 @@
+// run_options.hpp - what `vkfuse run` was asked to do, checked before any work.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "args.hpp"
+#include "backend.hpp"
+#include "vkfuse/dataset.hpp"
+#include "vkfuse/fusion.hpp"
+#include "vkfuse/illumination.hpp"
+
+namespace vkfuse::cli {
+
+struct RunOptions {
+    int sensors = 1;
+    std::string object = "coin";
+    IlluminationSequence sequence;  // the paper's best pair unless --sequence
+    FusionSpec fusion;              // wavelet, bior4.4, 3 levels unless told
+    BackendChoice backend = BackendChoice::Auto;
+    std::optional<int> cycles;
+    std::optional<double> duration_s;  // of the sensors' clock
+    bool virtual_clock = false;
+    bool camera_auto = false;  // simulated DIGITs: auto exposure and white balance on
+    std::optional<std::string> replay, record, out;
+    int background_frames = 0;
+    double timeout_s = 5.0;
+};
+
+inline constexpr const char* kDefaultSequence = "15,15,15+0,15,0";
+inline constexpr int kDefaultBackgroundFrames = 20;
+inline constexpr int kMaxSimulatedSensors = 64;
+
+// Parses and checks every option (names, ranges, the sequence against the
+// DIGIT's LEDs, the object against the simulator's). Throws Error naming the option.
+RunOptions parse_run_options(const Args& args);
+
+// With --replay: the recorded sequence, fusion and background count wherever
+// the command line did not set them, and the recorded object when it named
+// none. Throws Error when the dataset cannot serve the run.
+void adopt_recording(RunOptions& options, const Args& args, const Dataset& dataset);
+
+}  // namespace vkfuse::cli

@@ -1,0 +1,46 @@
+// run_output.hpp - what `vkfuse run --out DIR` writes:
+//   DIR/metrics.jsonl                       one JSON object per sensor per cycle
+//   DIR/fused/<serial>/<cycle>.png          every fused frame (8-bit, clamped)
+//   DIR/side_by_side/<object>_<serial>.png  the last static frame | the last fused frame
+//   DIR/summary.json                        the summary `vkfuse run` prints
+#pragma once
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "vkfuse/illumination.hpp"
+#include "vkfuse/rig.hpp"
+
+namespace vkfuse::cli {
+
+// One metrics line (no wall-clock values: a replay reproduces it exactly).
+std::string metrics_line(const CycleResult& cycle, const SensorCycle& sensor, const std::string& object);
+
+// The slot of sequence lit by every LED at full level (the sensor's usual,
+// static illumination), else slot 0.
+std::size_t static_slot(const IlluminationSequence& sequence, const LedLayout& leds);
+
+class RunOutput {
+public:
+    // Creates DIR (an existing one is reused; files of the same name are replaced).
+    RunOutput(std::string directory, std::string object, std::size_t static_slot);
+    ~RunOutput();
+    RunOutput(const RunOutput&) = delete;
+    RunOutput& operator=(const RunOutput&) = delete;
+
+    void write(const CycleResult& cycle);
+    // Side-by-side pictures and the summary; closes metrics.jsonl.
+    void finish(const std::string& summary_json);
+
+private:
+    struct Last {
+        std::vector<Frame> frames;
+        Image fused;
+    };
+    std::string directory_, object_;
+    std::size_t static_slot_;
+    std::FILE* metrics_ = nullptr;
+    std::vector<std::pair<std::string, Last>> last_;  // by serial, in sensor order
+};
+
+}  // namespace vkfuse::cli

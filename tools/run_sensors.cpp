@@ -1,0 +1,41 @@
+#include "run_sensors.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace vkfuse::cli {
+
+RunSensors simulated_sensors(const RunOptions& o) {
+    RunSensors out;
+    const std::shared_ptr<Clock> shared_real = o.virtual_clock ? nullptr : make_real_clock();
+    for (int i = 0; i < o.sensors; ++i) {
+        SimDigitOptions sim;
+        sim.seed = std::uint64_t(i) + 1;
+        sim.object = o.background_frames > 0 ? "nothing" : o.object;
+        sim.camera_auto = o.camera_auto;
+        char serial[16];
+        std::snprintf(serial, sizeof serial, "SIM-%04d", i + 1);
+        sim.serial = serial;
+        // Virtual clocks are per sensor: each capture thread advances its own
+        // sensor's time, so sensors never wait on one another's clock.
+        sim.clock = o.virtual_clock ? make_virtual_clock() : shared_real;
+        auto digit = std::make_shared<SimDigit>(sim);
+        out.sims.push_back(digit);
+        out.rig.push_back({digit, sim.clock});
+    }
+    return out;
+}
+
+RunSensors replayed_sensors(const RunOptions& o, std::shared_ptr<const Dataset> dataset) {
+    RunSensors out;
+    out.judging = FrameJudging::Label;
+    for (const DatasetSensorRecord& record : dataset->sensors) {
+        auto sensor = std::make_shared<DatasetSensor>(dataset, record.info.serial, o.object);
+        const std::size_t cycles = sensor->cycles_available(o.sequence);
+        out.recorded_cycles = std::min(out.recorded_cycles.value_or(cycles), cycles);
+        out.rig.push_back({sensor, nullptr});
+    }
+    return out;
+}
+
+}  // namespace vkfuse::cli

@@ -1,0 +1,32 @@
+// run_sensors.hpp - the sensors `vkfuse run` drives: simulated DIGITs, or a
+// recorded dataset played back.
+#pragma once
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "run_options.hpp"
+#include "vkfuse/rig.hpp"
+#include "vkfuse/sim_digit.hpp"
+
+namespace vkfuse::cli {
+
+struct RunSensors {
+    std::vector<RigSensor> rig;
+    std::vector<std::shared_ptr<SimDigit>> sims;  // empty when replaying
+    FrameJudging judging = FrameJudging::Timing;
+    std::optional<std::size_t> recorded_cycles;  // replay: full cycles every sensor holds
+};
+
+// N simulated DIGITs, serials SIM-0001.., seeds 1.., with nothing pressed yet
+// when backgrounds are to be taken (the rig presses the object afterwards).
+// Each has its own virtual clock, or all share one real clock. The camera's
+// exposure and white balance are locked unless options.camera_auto: a rig
+// sets them fixed, or the camera would even out the very differences between
+// LED settings that fusion feeds on (and settle for ~0.1 s after each switch).
+RunSensors simulated_sensors(const RunOptions& options);
+
+// One DatasetSensor per recorded sensor, playing options.object.
+RunSensors replayed_sensors(const RunOptions& options, std::shared_ptr<const Dataset> dataset);
+
+}  // namespace vkfuse::cli

@@ -1,0 +1,106 @@
+#include "run_stats.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "json.hpp"
+
+namespace vkfuse::cli {
+namespace {
+
+std::string fixed(double v, int decimals) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, v);
+    return text;
+}
+
+std::string timing_json(const std::optional<SwitchTiming>& t) {
+    if (!t) return "null";
+    return "{\"frame_period_s\": " + json_number(t->frame_period) +
+           ", \"latency_max_s\": " + json_number(t->latency_max) + ", \"clearance_s\": " + json_number(t->clearance) +
+           ", \"delivery_s\": " + json_number(t->delivery) + ", \"jitter_s\": " + json_number(t->jitter) + "}";
+}
+
+}  // namespace
+
+RunStats::RunStats(std::size_t sensors) : sensors_(sensors) {}
+
+void RunStats::add(const CycleResult& cycle, double write_s) {
+    ++cycles_;
+    last_ok_ = 0;
+    for (std::size_t i = 0; i < cycle.sensors.size(); ++i) {
+        const SensorCycle& s = cycle.sensors[i];
+        if (s.status != SensorStatus::Ok) {
+            errors_.insert(s.error);
+            continue;
+        }
+        ++last_ok_;
+        ++fused_;
+        PerSensor& p = sensors_[i];
+        const double ts = s.frames.back().timestamp;
+        if (p.fused++ == 0) p.first_ts = ts;
+        p.last_ts = ts;
+    }
+    last_capture_s_ = cycle.capture_wait_s;
+    last_fuse_s_ = cycle.fuse_s;
+    last_write_s_ = write_s;
+    capture_s_ += cycle.capture_wait_s;
+    fuse_s_ += cycle.fuse_s;
+    write_s_ += write_s;
+}
+
+double RunStats::wall_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+double RunStats::sensor_elapsed_s() const {
+    double widest = 0;
+    for (const PerSensor& p : sensors_)
+        if (p.fused > 0) widest = std::max(widest, p.last_ts - p.first_ts);
+    return widest;
+}
+
+// Fused cycles per second of each sensor's own clock, from its first fused
+// cycle to its last: what the LED schedule sustains, whatever the host speed.
+std::vector<double> RunStats::sensor_clock_fps() const {
+    std::vector<double> out;
+    for (const PerSensor& p : sensors_)
+        if (p.fused >= 2 && p.last_ts > p.first_ts) out.push_back(double(p.fused - 1) / (p.last_ts - p.first_ts));
+    return out;
+}
+
+std::string RunStats::progress_line(std::optional<int> target) const {
+    const double wall = std::max(wall_s(), 1e-9);
+    const double per_s = double(fused_) / wall;
+    return "cycle " + std::to_string(cycles_) + (target ? "/" + std::to_string(*target) : "") + " | " +
+           std::to_string(last_ok_) + "/" + std::to_string(sensors_.size()) + " ok | " +
+           fixed(per_s / double(sensors_.size()), 2) + " fused fps/sensor (" + fixed(per_s, 1) +
+           " sensor-cycles/s) | capture " + fixed(last_capture_s_ * 1e3, 1) + " ms, fuse " +
+           fixed(last_fuse_s_ * 1e3, 1) + " ms, write " + fixed(last_write_s_ * 1e3, 1) + " ms";
+}
+
+std::string RunStats::summary_json(const Rig& rig) const {
+    const double wall = std::max(wall_s(), 1e-9);
+    const double n = double(std::max<std::uint64_t>(cycles_, 1));
+    const std::vector<double> fps = sensor_clock_fps();
+    double fps_min = 0, fps_mean = 0;
+    if (!fps.empty()) {
+        fps_min = *std::min_element(fps.begin(), fps.end());
+        for (double f : fps) fps_mean += f / double(fps.size());
+    }
+    std::string timings, errors;
+    for (std::size_t i = 0; i < rig.sensors(); ++i)
+        timings += (i ? ", " : "") + json_string(rig.serial(i)) + ": " + timing_json(rig.timing(i));
+    for (const std::string& e : errors_) errors += (errors.empty() ? "" : ", ") + json_string(e);
+    return "{\"cycles\": " + std::to_string(cycles_) + ", \"sensors\": " + std::to_string(sensors_.size()) +
+           ", \"submits\": " + std::to_string(rig.submits()) + ", \"fused\": " + std::to_string(fused_) +
+           ", \"wall_s\": " + json_number(wall) + ", \"sensor_cycles_per_s\": " + json_number(double(fused_) / wall) +
+           ", \"fused_fps_per_sensor\": " + json_number(double(fused_) / wall / double(sensors_.size())) +
+           ", \"sensor_clock_fps_min\": " + json_number(fps_min) +
+           ", \"sensor_clock_fps_mean\": " + json_number(fps_mean) +
+           ", \"ms_per_cycle\": {\"capture\": " + json_number(capture_s_ / n * 1e3) +
+           ", \"fuse\": " + json_number(fuse_s_ / n * 1e3) + ", \"write\": " + json_number(write_s_ / n * 1e3) +
+           "}, \"switch_timing\": {" + timings + "}, \"errors\": [" + errors + "]}";
+}
+
+}  // namespace vkfuse::cli
