@@ -7,12 +7,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "json_value.hpp"
+#include "io/json_value.hpp"
 #include "report_json.hpp"
 
 namespace {
 
-using vkfuse::bench::JsonValue;
+using vkfuse::json::Value;
 
 std::string read_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -22,37 +22,37 @@ std::string read_file(const std::string& path) {
     return s.str();
 }
 
-bool is_measured(const JsonValue& cell) {
-    const JsonValue* skipped = cell.find("skipped");
-    return skipped && skipped->type == JsonValue::Type::Null;
+bool is_measured(const Value& cell) {
+    const Value* skipped = cell.find("skipped");
+    return skipped && skipped->is_null();
 }
 
 // A measured cell must carry numbers where it measured something.
-void check_measured(const JsonValue& cell, std::size_t index) {
+void check_measured(const Value& cell, std::size_t index) {
     for (const char* key : {"median_ms", "min_ms", "max_ms", "throughput_cycles_s", "max_abs_err", "mean_abs_err"}) {
-        const JsonValue* v = cell.find(key);
-        if (v->type != JsonValue::Type::Number || v->number < 0)
+        const Value* v = cell.find(key);
+        if (!v->is_number() || v->number() < 0)
             throw std::runtime_error("cell " + std::to_string(index) + ": \"" + key + "\" is not a non-negative number");
     }
-    const JsonValue* m = cell.find("metric_rel_err");
-    if (m->type != JsonValue::Type::Object || !m->find("sharpness") || !m->find("contrast") || !m->find("background_diff"))
+    const Value* m = cell.find("metric_rel_err");
+    if (!m->is_object() || !m->find("sharpness") || !m->find("contrast") || !m->find("background_diff"))
         throw std::runtime_error("cell " + std::to_string(index) + ": metric_rel_err lacks a metric");
 }
 
-void check(const JsonValue& doc, int min_cells, const std::string& require_backend) {
-    if (doc.type != JsonValue::Type::Array) throw std::runtime_error("top level is not an array");
-    if (int(doc.array.size()) < min_cells)
-        throw std::runtime_error(std::to_string(doc.array.size()) + " cells, expected at least " + std::to_string(min_cells));
+void check(const Value& doc, int min_cells, const std::string& require_backend) {
+    if (!doc.is_array()) throw std::runtime_error("top level is not an array");
+    if (int(doc.array().size()) < min_cells)
+        throw std::runtime_error(std::to_string(doc.array().size()) + " cells, expected at least " + std::to_string(min_cells));
     bool backend_seen = require_backend.empty();
-    for (std::size_t i = 0; i < doc.array.size(); ++i) {
-        const JsonValue& cell = doc.array[i];
-        if (cell.type != JsonValue::Type::Object) throw std::runtime_error("cell " + std::to_string(i) + " is not an object");
+    for (std::size_t i = 0; i < doc.array().size(); ++i) {
+        const Value& cell = doc.array()[i];
+        if (!cell.is_object()) throw std::runtime_error("cell " + std::to_string(i) + " is not an object");
         for (const auto& key : vkfuse::bench::json_required_fields())
             if (!cell.find(key)) throw std::runtime_error("cell " + std::to_string(i) + " lacks \"" + key + "\"");
         if (!is_measured(cell)) continue;
         check_measured(cell, i);
-        const JsonValue* backend = cell.find("backend");
-        backend_seen |= backend->type == JsonValue::Type::String && backend->string == require_backend;
+        const Value* backend = cell.find("backend");
+        backend_seen |= backend->is_string() && backend->string() == require_backend;
     }
     if (!backend_seen) throw std::runtime_error("no measured " + require_backend + " cell");
 }
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
         if (opt == "--require-measured") backend = argv[i + 1];
     }
     try {
-        check(vkfuse::bench::parse_json(read_file(argv[1])), min_cells, backend);
+        check(vkfuse::json::parse(read_file(argv[1]), argv[1]), min_cells, backend);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: %s\n", argv[1], e.what());
         return 1;

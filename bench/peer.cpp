@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "json_value.hpp"
+#include "io/json_value.hpp"
 #include "process.hpp"
 #include "temp_dir.hpp"
 #include "vkfuse/error.hpp"
@@ -12,11 +12,11 @@
 namespace vkfuse::bench {
 namespace {
 
-double number_field(const JsonValue& v, std::string_view key) {
-    const JsonValue* f = v.find(key);
-    if (!f || f->type != JsonValue::Type::Number)
+double number_field(const json::Value& v, std::string_view key) {
+    const json::Value* f = v.find(key);
+    if (!f || !f->is_number())
         throw std::runtime_error("peer output lacks the number \"" + std::string(key) + "\"");
-    return f->number;
+    return f->number();
 }
 
 std::vector<std::string> peer_command(const std::string& python, const std::string& script, const Cell& cell,
@@ -35,9 +35,9 @@ void read_answer(const std::string& stdout_text, const std::filesystem::path& fu
                  PeerResult& r) {
     const std::string answer = last_line(stdout_text);
     if (answer.empty()) throw std::runtime_error("the peer printed nothing on stdout");
-    const JsonValue v = parse_json(answer);
-    const JsonValue* name = v.find("peer");
-    r.name = name && name->type == JsonValue::Type::String ? name->string : "python";
+    const json::Value v = json::parse(answer, "peer output");
+    const json::Value* name = v.find("peer");
+    r.name = name && name->is_string() ? name->string() : "python";
     r.per_sensor.median_ms = number_field(v, "median_ms");
     r.per_sensor.min_ms = number_field(v, "min_ms");
     r.per_sensor.max_ms = number_field(v, "max_ms");

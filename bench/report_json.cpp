@@ -3,83 +3,94 @@
 #include <cstdio>
 
 #include "io/atomic_write.hpp"
-#include "json_writer.hpp"
+#include "io/json_value.hpp"
 
 namespace vkfuse::bench {
 namespace {
 
-std::string metric_errors_json(const MetricError& m) {
-    return JsonObject()
-        .number("sharpness", m.sharpness)
-        .number("contrast", m.contrast)
-        .number("background_diff", m.background_diff)
-        .str();
+using json::Value;
+
+// A JSON object under construction, members in the order added.
+class Members {
+public:
+    Members& add(std::string key, Value v) {
+        object_.emplace_back(std::move(key), std::move(v));
+        return *this;
+    }
+    Members& add(std::string key, std::optional<double> v) { return add(std::move(key), v ? Value(*v) : Value(nullptr)); }
+    Members& add(std::string key, const std::optional<std::string>& v) {
+        return add(std::move(key), v ? Value(*v) : Value(nullptr));
+    }
+    Value done() { return Value(std::move(object_)); }
+
+private:
+    Value::Object object_;
+};
+
+Value metric_errors(const MetricError& m) {
+    return Members()
+        .add("sharpness", Value(m.sharpness))
+        .add("contrast", Value(m.contrast))
+        .add("background_diff", Value(m.background_diff))
+        .done();
 }
 
-std::string stages_json(const std::vector<StageTime>& stages) {
-    JsonObject o;
-    for (const auto& s : stages) o.number(s.name, s.median_ms);
-    return o.str();
+Value stages(const std::vector<StageTime>& stages) {
+    Members o;
+    for (const auto& s : stages) o.add(s.name, Value(s.median_ms));
+    return o.done();
 }
 
-void add_identity(JsonObject& o, const CellResult& r) {
+std::optional<std::string> text_if(bool present, std::string_view text) {
+    return present ? std::optional<std::string>(std::string(text)) : std::nullopt;
+}
+
+void add_identity(Members& o, const CellResult& r) {
     const Cell& c = r.cell;
-    o.text("method", to_string(c.method.method));
-    if (c.method.method == Method::Wavelet)
-        o.text("wavelet", to_string(c.method.wavelet));
-    else
-        o.null("wavelet");
-    if (c.levels > 0)
-        o.integer("levels", c.levels);
-    else
-        o.null("levels");
-    o.text("backend", to_string(c.backend)).text("device", r.device).text("precision", to_string(c.precision));
-    o.integer("width", c.size.width).integer("height", c.size.height).integer("frames", c.frames).integer("sensors", c.sensors);
+    const bool wavelet = c.method.method == Method::Wavelet;
+    o.add("method", Value(std::string(to_string(c.method.method))));
+    o.add("wavelet", text_if(wavelet, to_string(c.method.wavelet)));
+    o.add("levels", c.levels > 0 ? std::optional<double>(c.levels) : std::nullopt);
+    o.add("backend", Value(std::string(to_string(c.backend)))).add("device", Value(r.device));
+    o.add("precision", Value(std::string(to_string(c.precision))));
+    o.add("width", Value(c.size.width)).add("height", Value(c.size.height));
+    o.add("frames", Value(c.frames)).add("sensors", Value(c.sensors));
     std::optional<std::string> skipped;
     if (!c.skip.empty()) skipped = "skipped: " + c.skip;
     if (!r.failure.empty()) skipped = "failed: " + r.failure;
-    o.text_or_null("skipped", skipped);
+    o.add("skipped", skipped);
 }
 
-void add_measurements(JsonObject& o, const CellResult& r) {
+void add_measurements(Members& o, const CellResult& r) {
     const bool m = r.measured();
     auto when = [m](double v) { return m ? std::optional<double>(v) : std::nullopt; };
-    o.number_or_null("median_ms", when(r.timing.median_ms)).number_or_null("min_ms", when(r.timing.min_ms));
-    o.number_or_null("max_ms", when(r.timing.max_ms)).number_or_null("runs", when(r.timing.runs)).boolean("runs_capped", r.timing.capped);
-    o.number_or_null("plan_ms", r.cell.backend == Backend::Vulkan ? when(r.plan_ms) : std::nullopt);
-    o.number_or_null("throughput_cycles_s", when(r.throughput())).number_or_null("mpixels_s", when(r.mpixels_per_second()));
-    o.number_or_null("max_abs_err", when(r.error.max_abs)).number_or_null("mean_abs_err", when(r.error.mean_abs()));
-    o.number_or_null("samples_over_1e-5", when(double(r.error.over_tolerance))).number_or_null("checked_sensors", when(r.checked_sensors));
-    if (m) {
-        o.raw("metric_rel_err", metric_errors_json(r.metric_error));
-        o.raw("metric_rel_err_own_image", metric_errors_json(r.metric_error_own_image));
-    } else {
-        o.null("metric_rel_err").null("metric_rel_err_own_image");
-    }
-    if (m && !r.stages.empty())
-        o.raw("kernel_ms", stages_json(r.stages));
-    else
-        o.null("kernel_ms");
-    o.number_or_null("bytes_per_cycle", m ? r.bytes_per_cycle : std::nullopt);
-    o.number_or_null("copy_bandwidth_gbs", r.copy_bandwidth ? std::optional<double>(*r.copy_bandwidth * 1e-9) : std::nullopt);
-    o.number_or_null("bandwidth_fraction", m ? r.bandwidth_fraction() : std::nullopt);
-    o.number_or_null("load_average", when(r.load_average));
+    o.add("median_ms", when(r.timing.median_ms)).add("min_ms", when(r.timing.min_ms));
+    o.add("max_ms", when(r.timing.max_ms)).add("runs", when(r.timing.runs)).add("runs_capped", Value(r.timing.capped));
+    o.add("plan_ms", r.cell.backend == Backend::Vulkan ? when(r.plan_ms) : std::nullopt);
+    o.add("throughput_cycles_s", when(r.throughput())).add("mpixels_s", when(r.mpixels_per_second()));
+    o.add("max_abs_err", when(r.error.max_abs)).add("mean_abs_err", when(r.error.mean_abs()));
+    o.add("samples_over_1e-5", when(double(r.error.over_tolerance))).add("checked_sensors", when(r.checked_sensors));
+    o.add("metric_rel_err", m ? metric_errors(r.metric_error) : Value(nullptr));
+    o.add("metric_rel_err_own_image", m ? metric_errors(r.metric_error_own_image) : Value(nullptr));
+    o.add("kernel_ms", m && !r.stages.empty() ? stages(r.stages) : Value(nullptr));
+    o.add("bytes_per_cycle", m ? r.bytes_per_cycle : std::nullopt);
+    o.add("copy_bandwidth_gbs", r.copy_bandwidth ? std::optional<double>(*r.copy_bandwidth * 1e-9) : std::nullopt);
+    o.add("bandwidth_fraction", m ? r.bandwidth_fraction() : std::nullopt);
+    o.add("load_average", when(r.load_average));
 }
 
-void add_peer(JsonObject& o, const CellResult& r) {
+void add_peer(Members& o, const CellResult& r) {
     const PeerResult* p = r.peer && r.peer->failure.empty() ? &*r.peer : nullptr;
-    o.text_or_null("peer", p ? std::optional<std::string>(p->name) : std::nullopt);
-    o.text_or_null("peer_failure", r.peer && !r.peer->failure.empty() ? std::optional<std::string>(r.peer->failure) : std::nullopt);
-    o.number_or_null("peer_median_ms", r.peer_cell_ms());
-    o.number_or_null("peer_ms_per_sensor", p ? std::optional<double>(p->per_sensor.median_ms) : std::nullopt);
-    o.number_or_null("peer_runs", p ? std::optional<double>(p->per_sensor.runs) : std::nullopt);
-    o.number_or_null("peer_max_abs_err", p ? std::optional<double>(p->error.max_abs) : std::nullopt);
-    o.number_or_null("peer_mean_abs_err", p ? std::optional<double>(p->error.mean_abs()) : std::nullopt);
-    if (p)
-        o.raw("peer_metric_rel_err", metric_errors_json(p->metric_error));
-    else
-        o.null("peer_metric_rel_err");
-    o.number_or_null("peer_speedup", r.peer_speedup());
+    auto peer_value = [p](double v) { return p ? std::optional<double>(v) : std::nullopt; };
+    o.add("peer", text_if(p, p ? p->name : ""));
+    o.add("peer_failure", text_if(r.peer && !r.peer->failure.empty(), r.peer ? r.peer->failure : ""));
+    o.add("peer_median_ms", r.peer_cell_ms());
+    o.add("peer_ms_per_sensor", peer_value(p ? p->per_sensor.median_ms : 0));
+    o.add("peer_runs", peer_value(p ? p->per_sensor.runs : 0));
+    o.add("peer_max_abs_err", peer_value(p ? p->error.max_abs : 0));
+    o.add("peer_mean_abs_err", peer_value(p ? p->error.mean_abs() : 0));
+    o.add("peer_metric_rel_err", p ? metric_errors(p->metric_error) : Value(nullptr));
+    o.add("peer_speedup", r.peer_speedup());
 }
 
 }  // namespace
@@ -93,18 +104,18 @@ const std::vector<std::string>& json_required_fields() {
     return fields;
 }
 
-std::string cell_json(const CellResult& r) {
-    JsonObject o;
+json::Value cell_json(const CellResult& r) {
+    Members o;
     add_identity(o, r);
     add_measurements(o, r);
     add_peer(o, r);
-    return o.str();
+    return o.done();
 }
 
 void write_json(const std::string& path, const std::vector<CellResult>& results) {
-    std::string text = "[\n";
-    for (std::size_t i = 0; i < results.size(); ++i) text += "  " + cell_json(results[i]) + (i + 1 < results.size() ? ",\n" : "\n");
-    text += "]\n";
+    Value::Array cells;
+    for (const auto& r : results) cells.push_back(cell_json(r));
+    const std::string text = json::write(Value(std::move(cells))) + "\n";
     io::write_atomically(path, [&](std::FILE* f) { std::fwrite(text.data(), 1, text.size(), f); });
 }
 

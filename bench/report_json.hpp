@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "io/json_value.hpp"
 #include "result.hpp"
 
 namespace vkfuse::bench {
@@ -11,7 +12,7 @@ namespace vkfuse::bench {
 // the ctest check (check_json.cpp) requires each of them.
 const std::vector<std::string>& json_required_fields();
 
-std::string cell_json(const CellResult& r);
+json::Value cell_json(const CellResult& r);
 
 // Writes all cells atomically (a failed write leaves no partial file); throws vkfuse::Error(Io).
 void write_json(const std::string& path, const std::vector<CellResult>& results);
