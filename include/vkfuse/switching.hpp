@@ -22,7 +22,7 @@ namespace vkfuse {
 // longer). The two cannot be told apart further from frame timestamps alone,
 // and need not be.
 struct SwitchTiming {
-    double frame_period = 0;  // median spacing of frame timestamps
+    double frame_period = 0;  // median timestamp spacing per frame of the sensor's counter
     double jitter = 0;        // largest deviation of a spacing from frame_period
     double delivery = 0;      // median time from a frame's timestamp until grab() returned it
     double latency_max = 0;   // frames stamped >= request + latency_max are lit by the request alone
@@ -41,7 +41,7 @@ struct SwitchTiming {
 struct SwitchCalibration {
     int trials = 16;         // switches between the two settings (half each way), at spread phases
     double settle_s = 0.25;  // sensor time to wait before trusting a steady frame
-    double timeout_s = 2.0;  // sensor time one switch may take to show
+    double timeout_s = 2.0;  // sensor time one switch may take to show (and 12 frames at least)
     // A row whose mean moved less than this fraction of the old->new change is
     // "unchanged" (noise); the timing bounds are widened by the same fraction
     // of a frame period, so a slightly touched row can never pass as clean.

@@ -18,6 +18,9 @@ using sensor::RowProfile;
 
 // Row means closer than this (8-bit levels) count as the same steady image.
 constexpr double kSteadyLevels = 2.0;
+// A switch is given up on only after this many frames as well as the
+// timeout: a host too slow to take every frame sees few of them per second.
+constexpr int kMinFramesBeforeGivingUp = 12;
 // Rows the switch moves less than this take no part in judging frames.
 constexpr double kMinChangeLevels = 8.0;
 // Calibration needs a clear majority of rows to respond to the LEDs.
@@ -37,8 +40,15 @@ public:
     Frame grab() {
         Frame f = sensor_.grab();
         deliveries_.push_back(clock_.now() - f.timestamp);
-        if (have_last_) spacings_.push_back(f.timestamp - last_ts_);
+        // Per frame of the sensor's counter: a host too slow to take every
+        // frame still measures the period, not the gaps between its grabs.
+        if (have_last_ && f.index > last_index_) {
+            const double per_frame = (f.timestamp - last_ts_) / double(f.index - last_index_);
+            spacings_.push_back(per_frame);
+            if (f.index == last_index_ + 1) neighbours_.push_back(per_frame);
+        }
         last_ts_ = f.timestamp;
+        last_index_ = f.index;
         have_last_ = true;
         return f;
     }
@@ -51,14 +61,13 @@ public:
     double last_ts() const { return last_ts_; }
     const std::string& serial() const { return serial_; }
 
-    // Median spacing (robust to dropped frames) and the largest deviation of
-    // an ordinary spacing (one period, not a drop) from it.
+    // Median spacing per frame and the largest deviation of the spacing of
+    // two consecutive frames from it.
     std::pair<double, double> period_and_jitter(double fallback) const {
         if (spacings_.empty()) return {fallback, 0.0};
         const double period = median(spacings_);
         double jitter = 0;
-        for (double d : spacings_)
-            if (d > 0.5 * period && d < 1.5 * period) jitter = std::max(jitter, std::abs(d - period));
+        for (double d : neighbours_) jitter = std::max(jitter, std::abs(d - period));
         return {period, jitter};
     }
     double delivery() const { return deliveries_.empty() ? 0.0 : median(deliveries_); }
@@ -67,8 +76,9 @@ private:
     Sensor& sensor_;
     Clock& clock_;
     std::string serial_;
-    std::vector<double> spacings_, deliveries_;
+    std::vector<double> spacings_, neighbours_, deliveries_;
     double last_ts_ = 0;
+    std::uint64_t last_index_ = 0;
     bool have_last_ = false;
 };
 
@@ -77,9 +87,9 @@ private:
 RowProfile settle(Observer& obs, const Illumination& setting, const SwitchCalibration& opt) {
     const double t0 = obs.request(setting);
     std::deque<RowProfile> recent;
-    while (true) {
+    for (int seen = 1;; ++seen) {
         const Frame f = obs.grab();
-        if (f.timestamp - t0 > opt.settle_s + opt.timeout_s)
+        if (f.timestamp - t0 > opt.settle_s + opt.timeout_s && seen > kMinFramesBeforeGivingUp)
             throw Error(ErrorKind::Device, obs.serial() + ": frames do not settle within " +
                                                std::to_string(opt.settle_s + opt.timeout_s) +
                                                " s after switching the LEDs to " + setting.to_string());
@@ -108,9 +118,9 @@ void observe_switch(Observer& obs, const sensor::LightingJudge& judge, const Ill
     obs.clock().wait_until(obs.clock().now() + phase_delay);
     double last_old_ts = obs.last_ts();  // the settled frame before the request
     const double t = obs.request(to);
-    while (true) {
+    for (int seen = 1;; ++seen) {
         const Frame f = obs.grab();
-        if (f.timestamp - t > opt.timeout_s)
+        if (f.timestamp - t > opt.timeout_s && seen > kMinFramesBeforeGivingUp)
             throw Error(ErrorKind::Device, obs.serial() + ": LEDs did not switch to " + to.to_string() + " within " +
                                                std::to_string(opt.timeout_s) + " s");
         const Lighting lit = judge.judge(sensor::row_profile(f));
