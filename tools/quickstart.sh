@@ -29,15 +29,11 @@ build() {
 }
 
 run_main_job() {
-    mkdir -p out
     ./build/vkfuse info
-    # The paper's best pair, (15,15,15) + (0,15,0), fused with its best method.
-    ./build/vkfuse fuse --method wavelet --wavelet bior4.4 --levels 3 \
-        -o out/fused.png tests/data/demo_white.png tests/data/demo_green.png
-    ./build/vkfuse fuse --method wavelet -o out/fused.npy tests/data/demo_white.png tests/data/demo_green.png
-    ./build/vkfuse metrics --background tests/data/digit_bg_tacto.png \
-        tests/data/demo_white.png tests/data/demo_green.png out/fused.npy | tee out/metrics.jsonl
-    echo "quickstart: wrote out/fused.png, out/fused.npy, out/metrics.jsonl"
+    # One simulated DIGIT pressing a coin, cycling the paper's best pair (15,15,15) + (0,15,0) and
+    # fusing every cycle with its best method (wavelet, bior4.4), in real time.
+    ./build/vkfuse run --cycles 120 --out out
+    echo "quickstart: wrote out/metrics.jsonl, out/fused/SIM-0001/*.png, out/side_by_side/coin_SIM-0001.png"
 }
 
 run_tests() {
