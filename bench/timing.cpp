@@ -16,10 +16,9 @@ double time_ms(const std::function<void()>& f) {
 int capped_runs(const RunPolicy& p, double first_ms, bool& capped) {
     capped = false;
     if (!p.may_cap || first_ms <= 0) return p.runs;
-    const int fit = int(p.cell_seconds * 1000.0 / first_ms);
-    if (fit >= p.runs) return p.runs;
-    capped = true;
-    return std::max(3, fit);
+    const int runs = std::min(p.runs, std::max(3, int(p.cell_seconds * 1000.0 / first_ms)));
+    capped = runs < p.runs;
+    return runs;
 }
 
 }  // namespace
