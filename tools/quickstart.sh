@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # vkfuse quick start: installs what is missing (Debian 12, as root), builds, then
-#   run   the main job: fuse the demo frames on the best Vulkan device (else the CPU path)
+#   run   the main job: `vkfuse run` on the simulated DIGIT (or a real sensor when supported), best Vulkan device else CPU
 #   test  the whole test suite, Vulkan tests included (on lavapipe when no GPU)
 set -euo pipefail
 cd "$(dirname "$0")/.."
