@@ -19,7 +19,7 @@ void main() {
     const int N = 2 * pc.half_len;
     float lo = 0.0, hi = 0.0;
     for (int j = 0; j < F; ++j) {
-        int m = positive_mod(F / 2 + 2 * o - j, N);
+        int m = wrap_once(F / 2 + 2 * o - j, N);
         float x = pc.src.v[src_at(plane, line, min(m, pc.n - 1))];  // m == n: the repeated last sample
         lo += pc.filters.v[j] * x;
         hi += pc.filters.v[10 + j] * x;

@@ -21,11 +21,11 @@ void main() {
     const int Hf = F / 2;
     const int M = pc.half_len;
     const int s = (Hf % 2 == 0) ? 1 : 0;
-    int q = positive_mod(m - s, 2 * M);
+    int q = wrap_once(m - s, 2 * M);
     int o = q >> 1, p = q & 1;
     float acc = 0.0;
     for (int j = 0; j < Hf; ++j) {
-        int k = positive_mod(o + F / 4 - j, M);
+        int k = wrap_once(o + F / 4 - j, M);
         acc += pc.filters.v[20 + 2 * j + p] * pc.src.v[src_at(plane, line, k)] +
                pc.filters.v[30 + 2 * j + p] * pc.src.v[src_at(plane, line, M + k)];
     }
