@@ -65,7 +65,11 @@ float deviation_scale(float abs_sum, uint pixels) {
 }
 
 void main() {
-    uint s = gl_WorkGroupID.z, g = gl_WorkGroupID.x;
+    // Groups come as an (x, y) grid (grid_1d(): 2^28 pixels need 65536 of
+    // them, one more than x alone may hold); the few past the end leave
+    // together, so the barriers below stay uniform within every group.
+    uint s = gl_WorkGroupID.z, g = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    if (g >= pc.groups) return;
     uint pixels = uint(pc.width * pc.height);
     uint base = s * pc.channels * pixels;
     float y0 = luma(base, 0, 0);

@@ -10,6 +10,7 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
     constexpr std::uint32_t kPixelsPerGroup = 256 * 16;  // WG x ITEMS in metrics_partial.comp
     const std::uint64_t pixels = std::uint64_t(g.cfg.width) * std::uint64_t(g.cfg.height);
     const std::uint32_t wgs = groups(pixels, kPixelsPerGroup);
+    const Grid grid = grid_1d(wgs, 1);
     const std::uint32_t S = std::uint32_t(g.cfg.sensors);
     const VkDeviceAddress partials = g.floats(std::uint64_t(wgs) * S * 4);
     for (std::uint32_t pass = 0; pass < 2; ++pass) {
@@ -26,7 +27,7 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
                            .u32(wgs)
                            .u32(background ? 1 : 0)
                            .u32(pass),
-                       wgs, 1, S);
+                       grid.x, grid.y, S);
         g.rec.dispatch("reduce_partials", PushConstants().ptr(partials).ptr(totals).u32(wgs), 1, 1, S);
     }
     g.rec.mark("metrics");
