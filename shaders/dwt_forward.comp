@@ -1,29 +1,39 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 #include "common.glsl"
 #include "line.glsl"
+#include "filter_taps.glsl"
 // One level of pywt's periodization DWT along a line (exactly
 // downsampling_convolution_periodization): an odd line is first extended by
 // repeating its last sample to even length N, then
 //   low[o]  = sum_j dec_lo[j] * x[(F/2 + 2o - j) mod N]
 //   high[o] = sum_j dec_hi[j] * x[(F/2 + 2o - j) mod N]
 // for o < N/2; low goes to positions [0, N/2), high to [N/2, N).
+// An invocation computes BLOCK consecutive (low, high) pairs from one window
+// of 2 BLOCK + F - 2 samples.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 void main() {
     uint plane = gl_WorkGroupID.z;
-    int o = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
+    int block = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
     int line = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
-    if (o >= pc.half_len || line >= pc.lines) return;
-    const int F = pc.wavelet;
+    int o0 = block * BLOCK;
+    if (o0 >= pc.half_len || line >= pc.lines) return;
     const int N = 2 * pc.half_len;
-    float lo = 0.0, hi = 0.0;
-    for (int j = 0; j < F; ++j) {
-        int m = wrap_once(F / 2 + 2 * o - j, N);
-        float x = pc.src.v[src_at(plane, line, min(m, pc.n - 1))];  // m == n: the repeated last sample
-        lo += pc.filters.v[j] * x;
-        hi += pc.filters.v[10 + j] * x;
+    const int first = F / 2 + 2 * o0 - (F - 1);  // the window's first sample
+    float win[2 * BLOCK + MAX_TAPS - 2];
+    [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)  // m == n: the repeated last sample
+        win[i] = pc.src.v[src_at(plane, line, min(wrap_window(first + i, N), pc.n - 1))];
+    [[unroll]] for (int b = 0; b < BLOCK; ++b) {
+        int o = o0 + b;
+        if (o >= pc.half_len) break;
+        float lo = 0.0, hi = 0.0;
+        [[unroll]] for (int j = 0; j < F; ++j) {  // x[F/2 + 2o - j] is win[2b + F - 1 - j]
+            lo += dec_lo(j) * win[2 * b + F - 1 - j];
+            hi += dec_hi(j) * win[2 * b + F - 1 - j];
+        }
+        pc.dst.v[dst_at(plane, line, o)] = lo;
+        pc.dst.v[dst_at(plane, line, pc.half_len + o)] = hi;
     }
-    pc.dst.v[dst_at(plane, line, o)] = lo;
-    pc.dst.v[dst_at(plane, line, pc.half_len + o)] = hi;
 }

@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 #include "common.glsl"
 #include "line.glsl"
+#include "filter_taps.glsl"
 // One level of pywt's periodization inverse DWT along a line (exactly
 // upsampling_convolution_valid_sf_periodization for (low, rec_lo) plus
 // (high, rec_hi)): with M = half_len coefficients per half, F taps, Hf = F/2,
@@ -10,24 +12,35 @@
 //   x[m] = sum_{j < Hf} rec_lo[2j + p] low[(o + start - j) mod M]
 //                     + rec_hi[2j + p] high[(o + start - j) mod M]
 // Only the first n of the 2M samples are written: pywt's crop for odd sizes.
+// An invocation computes the 2 BLOCK samples of BLOCK consecutive o from one
+// window of BLOCK + Hf - 1 coefficients of each half.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 void main() {
     uint plane = gl_WorkGroupID.z;
-    int m = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
+    int block = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
     int line = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
-    if (m >= pc.n || line >= pc.lines) return;
-    const int F = pc.wavelet;
-    const int Hf = F / 2;
     const int M = pc.half_len;
+    int o0 = block * BLOCK;
+    if (o0 >= M || line >= pc.lines) return;
+    const int Hf = F / 2;
     const int s = (Hf % 2 == 0) ? 1 : 0;
-    int q = wrap_once(m - s, 2 * M);
-    int o = q >> 1, p = q & 1;
-    float acc = 0.0;
-    for (int j = 0; j < Hf; ++j) {
-        int k = wrap_once(o + F / 4 - j, M);
-        acc += pc.filters.v[20 + 2 * j + p] * pc.src.v[src_at(plane, line, k)] +
-               pc.filters.v[30 + 2 * j + p] * pc.src.v[src_at(plane, line, M + k)];
+    const int first = o0 + F / 4 - Hf + 1;  // the windows' first coefficient
+    float low[BLOCK + MAX_TAPS / 2 - 1], high[BLOCK + MAX_TAPS / 2 - 1];
+    [[unroll]] for (int i = 0; i < BLOCK + Hf - 1; ++i) {
+        int k = wrap_window(first + i, M);
+        low[i] = pc.src.v[src_at(plane, line, k)];
+        high[i] = pc.src.v[src_at(plane, line, M + k)];
     }
-    pc.dst.v[dst_at(plane, line, m)] = acc;
+    [[unroll]] for (int b = 0; b < BLOCK; ++b) {
+        if (o0 + b >= M) break;
+        [[unroll]] for (int p = 0; p < 2; ++p) {
+            float acc = 0.0;
+            [[unroll]] for (int j = 0; j < Hf; ++j)  // coefficient o + start - j is window slot b + Hf - 1 - j
+                acc += rec_lo(2 * j + p) * low[b + Hf - 1 - j] + rec_hi(2 * j + p) * high[b + Hf - 1 - j];
+            int m = 2 * (o0 + b) + p + s;
+            if (m >= 2 * M) m -= 2 * M;
+            if (m < pc.n) pc.dst.v[dst_at(plane, line, m)] = acc;
+        }
+    }
 }

@@ -25,10 +25,3 @@ uint src_at(uint plane, int line, int i) {
 uint dst_at(uint plane, int line, int i) {
     return plane * pc.dst_plane_stride + uint(line * pc.dst_line_stride + i * pc.dst_elem_stride);
 }
-// a mod m for a in [-m, 2m): one conditional wrap. The filters never reach
-// further (a level exists only while the line is at least as long as the
-// filter), and integer % has no SIMD instruction on CPU drivers such as
-// lavapipe, where it was scalarised on every filter tap.
-int wrap_once(int a, int m) {
-    return a < 0 ? a + m : (a >= m ? a - m : a);
-}

@@ -157,9 +157,10 @@ void Context::Impl::create_layout() {
     vk::check(api->vkCreatePipelineLayout(device, &ci, nullptr, &layout), "vkCreatePipelineLayout");
 }
 
-VkPipeline Context::Impl::pipeline(const std::string& shader) {
+VkPipeline Context::Impl::pipeline(const std::string& shader, std::span<const std::uint32_t> specialization) {
     std::lock_guard lock(pipelines_mutex_);
-    if (auto it = pipelines_.find(shader); it != pipelines_.end()) return it->second;
+    auto key = std::make_pair(shader, std::vector<std::uint32_t>(specialization.begin(), specialization.end()));
+    if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
     auto spirv = vk::shader_spirv(shader);
     VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     mci.codeSize = spirv.size_bytes();
@@ -171,12 +172,18 @@ VkPipeline Context::Impl::pipeline(const std::string& shader) {
     pci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pci.stage.module = module;
     pci.stage.pName = "main";
+    std::vector<VkSpecializationMapEntry> entries;
+    for (std::uint32_t i = 0; i < specialization.size(); ++i)
+        entries.push_back({i, i * std::uint32_t(sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+    VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
+                              specialization.data()};
+    if (!entries.empty()) pci.stage.pSpecializationInfo = &spec;
     pci.layout = layout;
     VkPipeline pipe = VK_NULL_HANDLE;
     VkResult r = api->vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pci, nullptr, &pipe);
     api->vkDestroyShaderModule(device, module, nullptr);  // the pipeline keeps what it needs
     vk::check(r, ("vkCreateComputePipelines(" + shader + ")").c_str());
-    pipelines_.emplace(shader, pipe);
+    pipelines_.emplace(std::move(key), pipe);
     return pipe;
 }
 

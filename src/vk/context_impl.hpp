@@ -5,7 +5,9 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "vk/api.hpp"
 #include "vkfuse/context.hpp"
@@ -36,8 +38,10 @@ struct Context::Impl {
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    // The compute pipeline of an embedded shader, built on first use.
-    VkPipeline pipeline(const std::string& shader);
+    // The compute pipeline of an embedded shader, built on first use. The
+    // specialization words are the values of constant_id 0, 1, ... (32 bits
+    // each): one pipeline per shader and distinct values.
+    VkPipeline pipeline(const std::string& shader, std::span<const std::uint32_t> specialization = {});
 
     // First memory type with all `required` flags among those allowed by type_bits.
     std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
@@ -45,7 +49,7 @@ struct Context::Impl {
 
 private:
     std::mutex pipelines_mutex_;
-    std::map<std::string, VkPipeline> pipelines_;
+    std::map<std::pair<std::string, std::vector<std::uint32_t>>, VkPipeline> pipelines_;
 
     void create_instance(bool validation);
     void choose_device(int index);

@@ -8,6 +8,7 @@
 // approximation (top-left ch x cw, which is A_{l+1}) and the detail bands.
 // Periodization blocks are 2ch x 2cw (odd sizes padded as pywt does);
 // symmetric blocks are exactly h x w.
+#include <bit>
 #include <vector>
 
 #include "core/wavelet.hpp"
@@ -60,11 +61,26 @@ std::vector<float> filter_constants(Wavelet w) {
     return c;
 }
 
+// filter_taps.glsl's specialization constants: F, then dec_lo, dec_hi,
+// rec_lo, rec_hi (10 taps each).
+std::vector<std::uint32_t> filter_specialization(Wavelet w) {
+    const auto& fb = core::filter_bank(w);
+    std::vector<std::uint32_t> words{std::uint32_t(fb.length)};
+    for (const auto* taps : {&fb.dec_lo, &fb.dec_hi, &fb.rec_lo, &fb.rec_hi})
+        for (double t : *taps) words.push_back(std::bit_cast<std::uint32_t>(float(t)));
+    return words;
+}
+
+// Outputs (forward: coefficient pairs; inverse: coefficient indices o) per
+// invocation of dwt_forward / dwt_inverse: BLOCK in filter_taps.glsl.
+constexpr int kConvBlock = 4;
+
 class WaveletGraph {
 public:
     WaveletGraph(GraphBuilder& g) : g_(g), spec_(g.cfg.fusion) {
         periodization_ = spec_.mode == WaveletMode::Periodization;
         filters_ = g.constants(filter_constants(spec_.wavelet));
+        taps_ = filter_specialization(spec_.wavelet);
         int h = g.cfg.height, w = g.cfg.width;
         for (int l = 0; l < spec_.effective_levels(); ++l) {
             LevelShape s{h, w, (h + 1) / 2, (w + 1) / 2, 0, 0};
@@ -113,6 +129,7 @@ private:
     const FusionSpec& spec_;
     bool periodization_ = true;
     VkDeviceAddress filters_ = 0;
+    std::vector<std::uint32_t> taps_;
     std::vector<LevelShape> shapes_;
 
     int high(int n, int half) const { return periodization_ ? half : n - half; }
@@ -140,23 +157,26 @@ private:
             .i32(periodization_ ? core::filter_bank(spec_.wavelet).length : 0);
     }
 
+    // Lifting: an invocation per line. Convolution: per line, an invocation
+    // per kConvBlock of the half_len coefficient positions.
     void dispatch_line(const char* conv, const char* lift, const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls,
-                       int samples, std::uint32_t planes) {
+                       std::uint32_t planes) {
         const auto push = line_push(src, dst, ls);
+        const std::uint32_t blocks = groups(std::uint32_t(ls.half_len), kConvBlock);
         if (!periodization_) {
             g_.rec.dispatch(lift, push, groups(std::uint32_t(ls.lines), 64), 1, planes);
         } else if (ls.along_rows) {
-            g_.rec.dispatch(conv, push, groups(std::uint32_t(samples), 16), groups(std::uint32_t(ls.lines), 16), planes);
+            g_.rec.dispatch(conv, push, groups(blocks, 16), groups(std::uint32_t(ls.lines), 16), planes, taps_);
         } else {
-            g_.rec.dispatch(conv, push, groups(std::uint32_t(ls.lines), 16), groups(std::uint32_t(samples), 16), planes);
+            g_.rec.dispatch(conv, push, groups(std::uint32_t(ls.lines), 16), groups(blocks, 16), planes, taps_);
         }
     }
 
     void forward(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls, std::uint32_t planes) {
-        dispatch_line("dwt_forward", "lift_forward", src, dst, ls, ls.half_len, planes);
+        dispatch_line("dwt_forward", "lift_forward", src, dst, ls, planes);
     }
     void inverse(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls) {
-        dispatch_line("dwt_inverse", "lift_inverse", src, dst, ls, ls.n, g_.planes_out());
+        dispatch_line("dwt_inverse", "lift_inverse", src, dst, ls, g_.planes_out());
     }
 
     void fuse(const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s, bool deepest) {

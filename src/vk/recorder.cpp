@@ -33,14 +33,14 @@ void Recorder::barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPip
 }
 
 void Recorder::dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,
-                        std::uint32_t gz) {
+                        std::uint32_t gz, std::span<const std::uint32_t> specialization) {
     if (gx == 0 || gy == 0 || gz == 0) return;
     if (!first_)
         barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     first_ = false;
     auto& api = *ctx_.api;
-    api.vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader));
+    api.vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader, specialization));
     api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
     api.vkCmdDispatch(cmd_, gx, gy, gz);
 }

@@ -1,0 +1,68 @@
+// The periodization filter bank as specialization constants (constant_id 0:
+// the filter length F; 1..10 dec_lo, 11..20 dec_hi, 21..30 rec_lo, 31..40
+// rec_hi, each zero-padded to 10 taps), set per wavelet when the plan builds
+// the pipeline. With F known when the pipeline is compiled, the tap loops
+// unroll and every tap is an immediate: no filter loads, no index arithmetic.
+const int MAX_TAPS = 10;
+layout(constant_id = 0) const int F = 2;
+layout(constant_id = 1) const float DL0 = 0.0;
+layout(constant_id = 2) const float DL1 = 0.0;
+layout(constant_id = 3) const float DL2 = 0.0;
+layout(constant_id = 4) const float DL3 = 0.0;
+layout(constant_id = 5) const float DL4 = 0.0;
+layout(constant_id = 6) const float DL5 = 0.0;
+layout(constant_id = 7) const float DL6 = 0.0;
+layout(constant_id = 8) const float DL7 = 0.0;
+layout(constant_id = 9) const float DL8 = 0.0;
+layout(constant_id = 10) const float DL9 = 0.0;
+layout(constant_id = 11) const float DH0 = 0.0;
+layout(constant_id = 12) const float DH1 = 0.0;
+layout(constant_id = 13) const float DH2 = 0.0;
+layout(constant_id = 14) const float DH3 = 0.0;
+layout(constant_id = 15) const float DH4 = 0.0;
+layout(constant_id = 16) const float DH5 = 0.0;
+layout(constant_id = 17) const float DH6 = 0.0;
+layout(constant_id = 18) const float DH7 = 0.0;
+layout(constant_id = 19) const float DH8 = 0.0;
+layout(constant_id = 20) const float DH9 = 0.0;
+layout(constant_id = 21) const float RL0 = 0.0;
+layout(constant_id = 22) const float RL1 = 0.0;
+layout(constant_id = 23) const float RL2 = 0.0;
+layout(constant_id = 24) const float RL3 = 0.0;
+layout(constant_id = 25) const float RL4 = 0.0;
+layout(constant_id = 26) const float RL5 = 0.0;
+layout(constant_id = 27) const float RL6 = 0.0;
+layout(constant_id = 28) const float RL7 = 0.0;
+layout(constant_id = 29) const float RL8 = 0.0;
+layout(constant_id = 30) const float RL9 = 0.0;
+layout(constant_id = 31) const float RH0 = 0.0;
+layout(constant_id = 32) const float RH1 = 0.0;
+layout(constant_id = 33) const float RH2 = 0.0;
+layout(constant_id = 34) const float RH3 = 0.0;
+layout(constant_id = 35) const float RH4 = 0.0;
+layout(constant_id = 36) const float RH5 = 0.0;
+layout(constant_id = 37) const float RH6 = 0.0;
+layout(constant_id = 38) const float RH7 = 0.0;
+layout(constant_id = 39) const float RH8 = 0.0;
+layout(constant_id = 40) const float RH9 = 0.0;
+// Tap j of each filter (a constant array of specialization constants is not
+// allowed for floats): once the loops unroll, j is constant and the select
+// chains fold to one immediate.
+#define VKFUSE_TAP(P, j) ((j) == 0 ? P##0 : (j) == 1 ? P##1 : (j) == 2 ? P##2 : (j) == 3 ? P##3 : (j) == 4 ? P##4 : \
+    (j) == 5 ? P##5 : (j) == 6 ? P##6 : (j) == 7 ? P##7 : (j) == 8 ? P##8 : P##9)
+float dec_lo(int j) { return VKFUSE_TAP(DL, j); }
+float dec_hi(int j) { return VKFUSE_TAP(DH, j); }
+float rec_lo(int j) { return VKFUSE_TAP(RL, j); }
+float rec_hi(int j) { return VKFUSE_TAP(RH, j); }
+
+// Outputs per invocation along the line: each keeps a window of the samples
+// its outputs share in registers, so a sample is loaded about once per
+// invocation that needs it instead of once per filter tap.
+const int BLOCK = 4;
+
+// a mod m for a in [-m, 2m), then clamped into [0, m): the clamp only touches
+// windows of invocations whose outputs fall past the end (never stored), and
+// keeps their loads in bounds on lines shorter than the window.
+int wrap_window(int a, int m) {
+    return min(a < 0 ? a + m : (a >= m ? a - m : a), m - 1);
+}
