@@ -103,9 +103,13 @@ public:
             PlaneSet t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
             PlaneSet d{g_.floats(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             forward(a, t, {s.w, s.cw, high(s.w, s.cw), s.h, true}, g_.planes_in());
-            forward(t, d, {s.h, s.ch, high(s.h, s.ch), s.bw, false}, g_.planes_in());
             PlaneSet f{g_.floats(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
-            fuse(d, f, s, l == L - 1);
+            if (periodization_) {
+                fuse_columns(t, d, f, s, l == L - 1);
+            } else {
+                forward(t, d, {s.h, s.ch, high(s.h, s.ch), s.bw, false}, g_.planes_in());
+                fuse(d, f, s, l == L - 1);
+            }
             fused.push_back(f);
             a = {d.addr, s.bw, d.plane_stride};
         }
@@ -177,6 +181,31 @@ private:
     }
     void inverse(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls) {
         dispatch_line("dwt_inverse", "lift_inverse", src, dst, ls, g_.planes_out());
+    }
+
+    // Periodization: the column pass and the fusion in one kernel; of each
+    // frame's block only the approximation the next level needs is written.
+    void fuse_columns(const PlaneSet& rows, const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s,
+                      bool deepest) {
+        g_.rec.dispatch("dwt_fuse_columns",
+                        PushConstants()
+                            .ptr(rows.addr)
+                            .ptr(coeffs.addr)
+                            .ptr(out.addr)
+                            .i32(s.h)
+                            .i32(s.ch)
+                            .i32(s.bw)
+                            .i32(s.bw)
+                            .u32(rows.plane_stride)
+                            .u32(coeffs.plane_stride)
+                            .i32(s.cw)
+                            .u32(std::uint32_t(g_.cfg.frames))
+                            .u32(std::uint32_t(g_.cfg.channels))
+                            .u32(std::uint32_t(spec_.base_rule))
+                            .u32(std::uint32_t(spec_.detail_rule))
+                            .u32(deepest ? 1 : 0),
+                        groups(std::uint32_t(s.bw), 16), groups(groups(std::uint32_t(s.ch), kConvBlock), 16),
+                        g_.planes_out(), taps_);
     }
 
     void fuse(const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s, bool deepest) {

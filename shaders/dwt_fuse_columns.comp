@@ -1,0 +1,71 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+#include "common.glsl"
+#include "filter_taps.glsl"
+// The column pass of one periodization DWT level (as dwt_forward.comp) and the
+// fusion of that level's coefficients across the K frames (as rule_fuse.comp)
+// in one kernel. An invocation takes BLOCK coefficient pairs of one column of
+// one (sensor, channel) plane: for each frame in turn it transforms its column
+// window in registers and feeds the 2 BLOCK coefficients to the rule. Only the
+// fused block is stored, plus what the next level reads: each frame's
+// approximation (low rows of the low columns). Against a column pass then a
+// fusion pass, K planes of coefficients are neither written nor read back.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(push_constant, std430) uniform Push {
+    Floats src;       // the row pass's output, plane (s*K + k)*C + c
+    Floats approx;    // each frame's coefficient block; only its approximation is written
+    Floats fused;     // fused block, plane s*C + c
+    int n;            // samples per column (the level's input height)
+    int half_len;     // coefficients per half column (periodization: high half as long)
+    int columns;      // block width
+    int row_stride;   // of every plane here
+    uint src_plane_stride;
+    uint block_plane_stride;  // of approx and fused
+    int approx_w;     // columns [0, approx_w) hold the row pass's low half
+    uint frames;
+    uint channels;
+    uint base_rule;
+    uint detail_rule;
+    uint deepest;     // 1: the approximation takes the base rule and is not kept
+} pc;
+
+void main() {
+    int x = int(gl_GlobalInvocationID.x);
+    int o0 = int(gl_GlobalInvocationID.y) * BLOCK;
+    uint z = gl_WorkGroupID.z;  // s * C + c
+    if (x >= pc.columns || o0 >= pc.half_len) return;
+    uint s = z / pc.channels, c = z % pc.channels;
+    bool low_columns = x < pc.approx_w;
+    bool keep_approx = low_columns && pc.deepest == 0u;
+    uint low_rule = (low_columns && pc.deepest != 0u) ? pc.base_rule : pc.detail_rule;
+    const int N = 2 * pc.half_len;
+    const int first = F / 2 + 2 * o0 - (F - 1);
+    RuleState low[BLOCK], high[BLOCK];
+    for (uint k = 0u; k < pc.frames; ++k) {
+        uint plane = (s * pc.frames + k) * pc.channels + c;
+        uint column = plane * pc.src_plane_stride + uint(x);
+        float win[2 * BLOCK + MAX_TAPS - 2];
+        [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)  // m == n: the repeated last sample
+            win[i] = pc.src.v[column + uint(min(wrap_window(first + i, N), pc.n - 1) * pc.row_stride)];
+        [[unroll]] for (int b = 0; b < BLOCK; ++b) {
+            float lo = 0.0, hi = 0.0;
+            [[unroll]] for (int j = 0; j < F; ++j) {
+                lo += dec_lo(j) * win[2 * b + F - 1 - j];
+                hi += dec_hi(j) * win[2 * b + F - 1 - j];
+            }
+            rule_add(low[b], low_rule, k, lo);
+            rule_add(high[b], pc.detail_rule, k, hi);
+            int o = o0 + b;
+            if (keep_approx && o < pc.half_len)
+                pc.approx.v[plane * pc.block_plane_stride + uint(o * pc.row_stride + x)] = lo;
+        }
+    }
+    [[unroll]] for (int b = 0; b < BLOCK; ++b) {
+        int o = o0 + b;
+        if (o >= pc.half_len) break;
+        uint at = z * pc.block_plane_stride + uint(o * pc.row_stride + x);
+        pc.fused.v[at] = rule_result(low[b], low_rule, pc.frames);
+        pc.fused.v[at + uint(pc.half_len * pc.row_stride)] = rule_result(high[b], pc.detail_rule, pc.frames);
+    }
+}
