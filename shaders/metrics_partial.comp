@@ -24,22 +24,32 @@ layout(push_constant, std430) uniform Push {
     uint pass_index;
 } pc;
 
-const uint ITEMS = 16u;
+// Rows per invocation: an invocation walks ROWS pixels down one column,
+// keeping the luma above, at and below the current pixel (and its channels)
+// in registers, so each pixel's channels are loaded about three times (for
+// itself and as its left and right neighbour's) instead of once per use.
+const uint ROWS = 16u;
 
-float luma(uint base, int x, int y) {
+vec3 channels_at(uint base, int x, int y) {
     uint i = base + uint(y * pc.width + x);
-    if (pc.channels == 1u) return pc.img.v[i];
+    if (pc.channels == 1u) return vec3(pc.img.v[i], 0.0, 0.0);
     uint ps = uint(pc.width * pc.height);
-    return 0.299 * pc.img.v[i] + 0.587 * pc.img.v[i + ps] + 0.114 * pc.img.v[i + 2u * ps];
+    return vec3(pc.img.v[i], pc.img.v[i + ps], pc.img.v[i + 2u * ps]);
 }
 
-// numpy.gradient along one axis: central difference inside, one-sided at the
-// ends, zero on a length-1 axis.
-float gradient(uint base, int x, int y, int dx, int dy, int pos, int n) {
+float luma_of(vec3 c) {
+    return pc.channels == 1u ? c.x : 0.299 * c.x + 0.587 * c.y + 0.114 * c.z;
+}
+
+float luma(uint base, int x, int y) { return luma_of(channels_at(base, x, y)); }
+
+// numpy.gradient along one axis from the samples before, at and after pos:
+// central difference inside, one-sided at the ends, zero on a length-1 axis.
+float gradient(float before, float here, float after, int pos, int n) {
     if (n == 1) return 0.0;
-    if (pos == 0) return luma(base, x + dx, y + dy) - luma(base, x, y);
-    if (pos == n - 1) return luma(base, x, y) - luma(base, x - dx, y - dy);
-    return (luma(base, x + dx, y + dy) - luma(base, x - dx, y - dy)) * 0.5;
+    if (pos == 0) return after - here;
+    if (pos == n - 1) return here - before;
+    return (after - before) * 0.5;
 }
 
 // |(gx, gy)| without squaring the components: gx * gx overflows float beyond
@@ -78,29 +88,47 @@ void main() {
         mean = pc.totals.v[s * 4u + 1u] / float(pixels);
         scale = deviation_scale(pc.totals.v[s * 4u + 3u], pixels);
     }
+    // Item = (strip, column); lanes of a group take neighbouring columns.
+    uint item = g * WG + gl_LocalInvocationIndex;
+    int x = int(item % uint(pc.width));
+    int top = int(item / uint(pc.width) * ROWS);
+    int xl = max(x - 1, 0), xr = min(x + 1, pc.width - 1);
     precise vec4 sum = vec4(0.0), comp = vec4(0.0);
-    for (uint i = 0u; i < ITEMS; ++i) {
-        uint p = (g * ITEMS + i) * WG + gl_LocalInvocationIndex;
-        if (p >= pixels) break;
-        int y = int(p / uint(pc.width)), x = int(p % uint(pc.width));
+    vec3 here = vec3(0.0);
+    float above = 0.0, at = 0.0;
+    if (top < pc.height) {
+        here = channels_at(base, x, top);
+        at = luma_of(here);
+        above = top > 0 ? luma(base, x, top - 1) : at;
+    }
+    for (uint r = 0u; r < ROWS; ++r) {
+        int y = top + int(r);
+        if (y >= pc.height) break;
+        vec3 next = y + 1 < pc.height ? channels_at(base, x, y + 1) : here;
+        float below = luma_of(next);
         vec4 v = vec4(0.0);
         if (pc.pass_index == 0u) {
-            float gx = gradient(base, x, y, 1, 0, x, pc.width);
-            float gy = gradient(base, x, y, 0, 1, y, pc.height);
+            float gx = gradient(luma(base, xl, y), at, luma(base, xr, y), x, pc.width);
+            float gy = gradient(above, at, below, y, pc.height);
             v.x = magnitude(gx, gy);
-            v.y = luma(base, x, y) - y0;
-            if (pc.has_bg != 0u)
+            v.y = at - y0;
+            if (pc.has_bg != 0u) {
+                uint p = uint(y * pc.width + x);
                 for (uint c = 0u; c < pc.channels; ++c)
-                    v.z += abs(pc.img.v[base + c * pixels + p] - pc.bg.v[base + c * pixels + p]);
+                    v.z += abs(here[c] - pc.bg.v[base + c * pixels + p]);
+            }
             v.w = abs(v.y);
         } else {
-            float d = (luma(base, x, y) - y0 - mean) * scale;
+            float d = (at - y0 - mean) * scale;
             v.x = d * d;
             // The host divides the scale back out: it travels as a sum with one
             // non-zero term, so the value the host reads is the one used here.
-            v.y = p == 0u ? scale : 0.0;
+            v.y = (x == 0 && y == 0) ? scale : 0.0;
         }
         kahan_add(sum, comp, v);
+        above = at;
+        at = below;
+        here = next;
     }
     vec4 total = workgroup_sum(sum, comp);
     if (gl_LocalInvocationIndex == 0u) {

@@ -7,9 +7,10 @@ namespace vkfuse::vk {
 
 void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, VkDeviceAddress totals0,
                     VkDeviceAddress totals1) {
-    constexpr std::uint32_t kPixelsPerGroup = 256 * 16;  // WG x ITEMS in metrics_partial.comp
-    const std::uint64_t pixels = std::uint64_t(g.cfg.width) * std::uint64_t(g.cfg.height);
-    const std::uint32_t wgs = groups(pixels, kPixelsPerGroup);
+    // metrics_partial.comp: WG invocations per group, each ROWS pixels of one column.
+    constexpr std::uint32_t kGroupSize = 256, kRows = 16;
+    const std::uint64_t items = std::uint64_t(g.cfg.width) * groups(std::uint64_t(g.cfg.height), kRows);
+    const std::uint32_t wgs = groups(items, kGroupSize);
     const Grid grid = grid_1d(wgs, 1);
     const std::uint32_t S = std::uint32_t(g.cfg.sensors);
     const VkDeviceAddress partials = g.floats(std::uint64_t(wgs) * S * 4);
