@@ -2,6 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 // One step of Laplacian reconstruction, in place: C_l += pyrUp(R_{l+1}, size of C_l).
+// An invocation takes the 2 x 2 outputs that share one 3 x 3 neighbourhood of
+// R_{l+1} (pyr_up_block).
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
     Floats coarse;  // R_{l+1}, cw x ch per plane
@@ -13,9 +15,15 @@ layout(push_constant, std430) uniform Push {
 } pc;
 
 void main() {
-    int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
+    int j = int(gl_GlobalInvocationID.x), i = int(gl_GlobalInvocationID.y);
     uint z = gl_WorkGroupID.z;
-    if (x >= pc.width || y >= pc.height) return;
-    uint i = z * uint(pc.width * pc.height) + uint(y * pc.width + x);
-    pc.fine.v[i] = pyr_up_at(pc.coarse, z * uint(pc.cw * pc.ch), pc.cw, pc.ch, y, x) + pc.fine.v[i];
+    if (j >= pc.cw || i >= pc.ch) return;
+    mat2 up = pyr_up_block(pc.coarse, z * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+            int y = 2 * i + a, x = 2 * j + b;
+            if (y >= pc.height || x >= pc.width) continue;
+            uint at = z * uint(pc.width * pc.height) + uint(y * pc.width + x);
+            pc.fine.v[at] = up[a][b] + pc.fine.v[at];
+        }
 }

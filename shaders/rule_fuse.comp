@@ -5,26 +5,21 @@
 // Source planes are (sensor s, frame k, channel c) at (s*K + k)*C + c; the
 // fused plane (s, c) at s*C + c. Inside the top-left split_w x split_h corner
 // (a wavelet approximation, the top of a pyramid) the base rule applies, the
-// detail rule elsewhere. With a coarse level given, each value is first turned
-// into a Laplacian coefficient: G_l - pyrUp(G_{l+1}).
+// detail rule elsewhere.
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
     Floats src;
-    Floats coarse;   // G_{l+1} planes (cw x ch) when laplacian != 0
     Floats dst;
     int width;       // region fused per plane
     int height;
     int row_stride;  // of src and dst planes
     uint plane_stride;
-    int cw;
-    int ch;
     uint frames;
     uint channels;
     uint base_rule;
     uint detail_rule;
     int split_w;
     int split_h;
-    uint laplacian;
 } pc;
 
 void main() {
@@ -37,9 +32,7 @@ void main() {
     RuleState st = RuleState(0.0, 0.0);
     for (uint k = 0u; k < pc.frames; ++k) {
         uint plane = (s * pc.frames + k) * pc.channels + c;
-        float v = pc.src.v[plane * pc.plane_stride + offset];
-        if (pc.laplacian != 0u) v -= pyr_up_at(pc.coarse, plane * uint(pc.cw * pc.ch), pc.cw, pc.ch, y, x);
-        rule_add(st, rule, k, v);
+        rule_add(st, rule, k, pc.src.v[plane * pc.plane_stride + offset]);
     }
     pc.dst.v[z * pc.plane_stride + offset] = rule_result(st, rule, pc.frames);
 }

@@ -16,6 +16,8 @@ struct Level {
 
 std::uint32_t rule_id(Rule r) { return std::uint32_t(r); }
 
+constexpr std::uint32_t kPyrDownRows = 8;  // ROWS in pyr_down.comp
+
 }  // namespace
 
 VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
@@ -29,7 +31,7 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
         c.h = (p.h + 1) / 2;
         c.gauss = g.floats(std::uint64_t(g.planes_in()) * c.w * c.h);
         g.rec.dispatch("pyr_down", PushConstants().ptr(p.gauss).ptr(c.gauss).i32(int(p.w)).i32(int(p.h)).i32(int(c.w)).i32(int(c.h)),
-                       groups(c.w, 16), groups(c.h, 16), g.planes_in());
+                       groups(c.w, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
     }
     g.rec.mark("pyr_down");
     for (int l = 0; l <= L; ++l) {
@@ -37,32 +39,44 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
         const bool top = l == L;
         const Level& coarse = top ? c : lv[std::size_t(l) + 1];
         c.fused = g.floats(std::uint64_t(g.planes_out()) * c.w * c.h);
-        g.rec.dispatch("rule_fuse",
-                       PushConstants()
-                           .ptr(c.gauss)
-                           .ptr(coarse.gauss)
-                           .ptr(c.fused)
-                           .i32(int(c.w))
-                           .i32(int(c.h))
-                           .i32(int(c.w))
-                           .u32(c.w * c.h)
-                           .i32(int(coarse.w))
-                           .i32(int(coarse.h))
-                           .u32(std::uint32_t(g.cfg.frames))
-                           .u32(std::uint32_t(g.cfg.channels))
-                           .u32(rule_id(g.cfg.fusion.base_rule))
-                           .u32(rule_id(g.cfg.fusion.detail_rule))
-                           .i32(top ? int(c.w) : 0)
-                           .i32(top ? int(c.h) : 0)
-                           .u32(top ? 0 : 1),
-                       groups(c.w, 16), groups(c.h, 16), g.planes_out());
+        if (top) {  // the base rule on G_L itself
+            g.rec.dispatch("rule_fuse",
+                           PushConstants()
+                               .ptr(c.gauss)
+                               .ptr(c.fused)
+                               .i32(int(c.w))
+                               .i32(int(c.h))
+                               .i32(int(c.w))
+                               .u32(c.w * c.h)
+                               .u32(std::uint32_t(g.cfg.frames))
+                               .u32(std::uint32_t(g.cfg.channels))
+                               .u32(rule_id(g.cfg.fusion.base_rule))
+                               .u32(rule_id(g.cfg.fusion.detail_rule))
+                               .i32(int(c.w))
+                               .i32(int(c.h)),
+                           groups(c.w, 16), groups(c.h, 16), g.planes_out());
+        } else {  // the detail rule on G_l - pyrUp(G_{l+1}), 2 x 2 outputs per invocation
+            g.rec.dispatch("lap_fuse",
+                           PushConstants()
+                               .ptr(c.gauss)
+                               .ptr(coarse.gauss)
+                               .ptr(c.fused)
+                               .i32(int(c.w))
+                               .i32(int(c.h))
+                               .i32(int(coarse.w))
+                               .i32(int(coarse.h))
+                               .u32(std::uint32_t(g.cfg.frames))
+                               .u32(std::uint32_t(g.cfg.channels))
+                               .u32(rule_id(g.cfg.fusion.detail_rule)),
+                           groups(coarse.w, 16), groups(coarse.h, 16), g.planes_out());
+        }
     }
     g.rec.mark("lap_fuse");
     for (int l = L - 1; l >= 0; --l) {
         auto& c = lv[std::size_t(l)];
         auto& up = lv[std::size_t(l) + 1];
         g.rec.dispatch("lap_collapse", PushConstants().ptr(up.fused).ptr(c.fused).i32(int(c.w)).i32(int(c.h)).i32(int(up.w)).i32(int(up.h)),
-                       groups(c.w, 16), groups(c.h, 16), g.planes_out());
+                       groups(up.w, 16), groups(up.h, 16), g.planes_out());
     }
     g.rec.mark("lap_collapse");
     return lv[0].fused;

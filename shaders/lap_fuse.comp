@@ -1,0 +1,46 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+// Fusion of one Laplacian level below the top: the coefficient of frame k is
+// G_l - pyrUp(G_{l+1}), formed here and never stored, and the detail rule
+// picks across the K frames. An invocation takes the 2 x 2 outputs that share
+// one 3 x 3 neighbourhood of G_{l+1} (pyr_up_block). Source planes are
+// (s*K + k)*C + c, the fused plane (s, c) is s*C + c.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(push_constant, std430) uniform Push {
+    Floats src;     // G_l planes, width x height
+    Floats coarse;  // G_{l+1} planes, cw x ch
+    Floats dst;     // fused planes, width x height
+    int width;
+    int height;
+    int cw;
+    int ch;
+    uint frames;
+    uint channels;
+    uint rule;
+} pc;
+
+void main() {
+    int j = int(gl_GlobalInvocationID.x), i = int(gl_GlobalInvocationID.y);
+    uint z = gl_WorkGroupID.z;  // s * C + c
+    if (j >= pc.cw || i >= pc.ch) return;
+    uint s = z / pc.channels, c = z % pc.channels;
+    uint plane_size = uint(pc.width * pc.height);
+    RuleState st[4];
+    for (uint k = 0u; k < pc.frames; ++k) {
+        uint plane = (s * pc.frames + k) * pc.channels + c;
+        mat2 up = pyr_up_block(pc.coarse, plane * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);
+        for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b) {
+                int y = 2 * i + a, x = 2 * j + b;
+                if (y < pc.height && x < pc.width)
+                    rule_add(st[2 * a + b], pc.rule, k, pc.src.v[plane * plane_size + uint(y * pc.width + x)] - up[a][b]);
+            }
+    }
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+            int y = 2 * i + a, x = 2 * j + b;
+            if (y < pc.height && x < pc.width)
+                pc.dst.v[z * plane_size + uint(y * pc.width + x)] = rule_result(st[2 * a + b], pc.rule, pc.frames);
+        }
+}
