@@ -33,7 +33,7 @@ constexpr OptionSpec kOptions[] = {
     {"--virtual-clock", "", "", "simulate on virtual clocks: as fast as the host allows, deterministic"},
     {"--camera-auto", "", "", "simulate the camera's auto exposure and white balance (default: locked)"},
     {"--background-frames", "", "N", "no-contact frames averaged per setting for the background (default 20; 0: none)"},
-    {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5)"},
+    {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},
     {"--replay", "", "DIR", "play a recorded dataset instead of simulating (vkfuse sim, vkfuse run --record)"},
     {"--record", "", "DIR", "record the frames fused (and the background frames) as a dataset (new directory)"},
     {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json"},

@@ -83,6 +83,7 @@ RunOptions parse_run_options(const Args& args) {
     o.out = args.value("--out");
     o.background_frames = kDefaultBackgroundFrames;
     if (auto v = args.value("--background-frames")) o.background_frames = parse_count("--background-frames", *v);
+    o.timeout_s = o.virtual_clock || o.replay ? kSimulatedTimeoutSeconds : kLiveTimeoutSeconds;
     if (auto v = args.value("--timeout")) o.timeout_s = parse_seconds("--timeout", *v);
     return o;
 }
