@@ -8,7 +8,9 @@
 // approximation (top-left ch x cw, which is A_{l+1}) and the detail bands.
 // Periodization blocks are 2ch x 2cw (odd sizes padded as pywt does);
 // symmetric blocks are exactly h x w.
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <vector>
 
 #include "core/wavelet.hpp"
@@ -61,13 +63,65 @@ std::vector<float> filter_constants(Wavelet w) {
     return c;
 }
 
+// How far the filter bank, as the kernels hold it, is from perfect
+// reconstruction: the largest entry of synthesis x analysis - identity on a
+// periodic line of 32 samples, computed in double from the taps rounded to
+// float (analysis taps times s, synthesis taps divided by s).
+double reconstruction_error(const core::FilterBank& fb, double s) {
+    constexpr int N = 32, M = N / 2;
+    const int F = fb.length, Hf = F / 2, start = F / 4, shift = Hf % 2 == 0 ? 1 : 0;
+    const auto as_float = [](double v) { return double(float(v)); };
+    const auto wrap = [](int a, int n) { return ((a % n) + n) % n; };
+    std::vector<double> analysis(N * N, 0.0), synthesis(N * N, 0.0);
+    for (int o = 0; o < M; ++o)
+        for (int j = 0; j < F; ++j) {
+            const int col = wrap(F / 2 + 2 * o - j, N);
+            analysis[std::size_t(o * N + col)] += as_float(fb.dec_lo[std::size_t(j)] * s);
+            analysis[std::size_t((M + o) * N + col)] += as_float(fb.dec_hi[std::size_t(j)] * s);
+        }
+    for (int m = 0; m < N; ++m) {
+        const int q = wrap(m - shift, N), o = q / 2, p = q % 2;
+        for (int j = 0; j < Hf; ++j) {
+            const int k = wrap(o + start - j, M);
+            synthesis[std::size_t(m * N + k)] += as_float(fb.rec_lo[std::size_t(2 * j + p)] / s);
+            synthesis[std::size_t(m * N + M + k)] += as_float(fb.rec_hi[std::size_t(2 * j + p)] / s);
+        }
+    }
+    double worst = 0;
+    for (int r = 0; r < N; ++r)
+        for (int c = 0; c < N; ++c) {
+            double v = r == c ? -1.0 : 0.0;
+            for (int k = 0; k < N; ++k) v += synthesis[std::size_t(r * N + k)] * analysis[std::size_t(k * N + c)];
+            worst = std::max(worst, std::abs(v));
+        }
+    return worst;
+}
+
+// A scale s for the analysis taps (synthesis taps get 1 / s). Any s > 0
+// leaves the fused image unchanged in exact arithmetic: every coefficient of
+// a band is scaled alike in every frame, which no rule notices, and the
+// inverse undoes it. In float32 it matters: pywt's taps carry sqrt(2), and
+// rounded to float they reconstruct with a gain of 1 - 3.4e-8 (haar) per
+// 1-D pass, which a rig re-fusing its own output compounds (the stress
+// suite's 100 feedback passes drifted by 4e-5). Without the sqrt(2), haar's
+// and bior2.2's taps are dyadic fractions, exact in float, and bior4.4's
+// error drops from 2.8e-8 to 6e-9; db2 is better as pywt has it. So each
+// wavelet takes whichever of the two is closer to perfect reconstruction.
+double analysis_scale(const core::FilterBank& fb) {
+    const double unnormalised = 1.0 / std::sqrt(2.0);
+    return reconstruction_error(fb, unnormalised) <= reconstruction_error(fb, 1.0) ? unnormalised : 1.0;
+}
+
 // filter_taps.glsl's specialization constants: F, then dec_lo, dec_hi,
-// rec_lo, rec_hi (10 taps each).
+// rec_lo, rec_hi (10 taps each), scaled by analysis_scale().
 std::vector<std::uint32_t> filter_specialization(Wavelet w) {
     const auto& fb = core::filter_bank(w);
+    const double s = analysis_scale(fb);
     std::vector<std::uint32_t> words{std::uint32_t(fb.length)};
-    for (const auto* taps : {&fb.dec_lo, &fb.dec_hi, &fb.rec_lo, &fb.rec_hi})
-        for (double t : *taps) words.push_back(std::bit_cast<std::uint32_t>(float(t)));
+    for (const auto* taps : {&fb.dec_lo, &fb.dec_hi})
+        for (double t : *taps) words.push_back(std::bit_cast<std::uint32_t>(float(t * s)));
+    for (const auto* taps : {&fb.rec_lo, &fb.rec_hi})
+        for (double t : *taps) words.push_back(std::bit_cast<std::uint32_t>(float(t / s)));
     return words;
 }
 

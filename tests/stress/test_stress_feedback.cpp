@@ -4,19 +4,20 @@
 // 100 passes, at the default and at the deepest level count (Laplacian down
 // to 1 x 1, max_wavelet_levels for each wavelet).
 //
-// Measured on lavapipe, 150 x 200 (worst over K = 2 max-abs and K = 3 mean):
-//   Laplacian              <= 6e-7
-//   wavelet, symmetric     1.1e-6 .. 1.2e-5, growing like sqrt(passes): the
-//                          lifting steps invert exactly but for rounding;
-//   wavelet, periodization 9e-6 .. 4.3e-5, growing linearly: pywt's taps
-//                          rounded to float32 leave the analysis-synthesis
-//                          gain of each 1-D pass at 1 - 3.4e-8 (haar: 2 h^2,
-//                          h = float(1/sqrt(2))), compounded over 2L passes
-//                          per fusion and 100 fusions (4.4e-5 at haar L = 7).
-// So 1e-5 after 100 passes holds for the Laplacian only; a wavelet pass
-// keeps within 1e-6 (ten times under SPEC.md's 1e-5 per fusion), which 100
-// passes may add up to at most 1e-4, and the error must not grow faster than
-// linearly (no compounding beyond the gain).
+// Measured on lavapipe, 96 x 150 (worst over K = 2 max-abs and K = 3 mean):
+//   Laplacian                      <= 7.2e-7
+//   wavelet, periodization, haar   3.0e-7  } the kernels drop pywt's sqrt(2)
+//                           bior2.2 4.0e-6  } from the taps (graph_wavelet.cpp,
+//                                              analysis_scale): exact in float
+//                           db2     8.3e-6 .. 1.06e-5
+//                           bior4.4 1.5e-5 .. 1.8e-5
+//   wavelet, symmetric     9.5e-7 .. 1.01e-5 (bior4.4): rounding in the lifting steps
+// The irrational taps of db2 and bior4.4, rounded to float, reconstruct with a
+// gain 1e-8 .. 3e-8 away from 1 per 1-D pass, and a nearly unchanged image fed
+// back meets the same roundings each pass, so both grow linearly: 1e-5 after
+// 100 passes holds for the Laplacian, haar and bior2.2 (asserted), not for
+// db2 and bior4.4, whose bound is 1e-4. Any compounding (growth faster than
+// linear) fails every case.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,8 +34,13 @@ namespace vkfuse::test {
 namespace {
 
 constexpr int kPasses = 100;
-constexpr double kLaplacianDrift = 1e-5;
-constexpr double kWaveletDrift = 1e-4;
+constexpr double kDrift = 1e-5;
+constexpr double kIrrationalTapsDrift = 1e-4;  // db2, bior4.4 (see above)
+
+double drift_bound(const FusionSpec& s) {
+    const bool irrational = s.method == Method::Wavelet && (s.wavelet == Wavelet::Db2 || s.wavelet == Wavelet::Bior44);
+    return irrational ? kIrrationalTapsDrift : kDrift;
+}
 constexpr int kHeight = 96, kWidth = 150;  // odd halvings: 150 -> 75 -> 38
 
 // The mean rule divides a sum of K equal values by K, which float rounds
@@ -66,7 +72,7 @@ std::vector<FeedbackRun> wavelet_runs(WaveletMode mode) {
 
 class StressFeedback : public VulkanTest {
 protected:
-    void feed_back(const std::vector<FeedbackRun>& runs, double bound) {
+    void feed_back(const std::vector<FeedbackRun>& runs) {
         const Image first = structured_frame(kHeight, kWidth, 1, 17);
         for (const auto& [spec, K] : runs) {
             const std::string what = "gpu feedback " + describe(spec) + " K=" + std::to_string(K);
@@ -83,7 +89,7 @@ protected:
                 if (pass == 10) drift_at_10 = max_abs_diff(current, convert<double>(first));
             }
             const double drift = max_abs_diff(current, convert<double>(first));
-            EXPECT_LE(drift, bound);
+            EXPECT_LE(drift, drift_bound(spec));
             // Linear growth gives 10x from pass 10 to 100, rounding noise ~3x; compounding more.
             EXPECT_LE(drift, 12 * drift_at_10 + 1e-7) << "after 10 passes: " << drift_at_10;
             report(what, drift);
@@ -92,13 +98,12 @@ protected:
 };
 
 TEST_F(StressFeedback, LaplacianDownToOnePixel) {
-    feed_back(runs_of(method_spec(Method::Laplacian), method_spec(Method::Laplacian, levels_to_one_pixel(kHeight, kWidth))),
-              kLaplacianDrift);
+    feed_back(runs_of(method_spec(Method::Laplacian), method_spec(Method::Laplacian, levels_to_one_pixel(kHeight, kWidth))));
 }
 
-TEST_F(StressFeedback, EveryWaveletPeriodization) { feed_back(wavelet_runs(WaveletMode::Periodization), kWaveletDrift); }
+TEST_F(StressFeedback, EveryWaveletPeriodization) { feed_back(wavelet_runs(WaveletMode::Periodization)); }
 
-TEST_F(StressFeedback, EveryWaveletSymmetric) { feed_back(wavelet_runs(WaveletMode::Symmetric), kWaveletDrift); }
+TEST_F(StressFeedback, EveryWaveletSymmetric) { feed_back(wavelet_runs(WaveletMode::Symmetric)); }
 
 // The double reference: pywt's bior4.4 taps, as published to 16 digits, are
 // biorthogonal only to ~1e-12, which 100 passes add up to 1.5e-10; every other
