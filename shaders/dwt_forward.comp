@@ -28,11 +28,12 @@ void main() {
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         int o = o0 + b;
         if (o >= pc.half_len) break;
-        float lo = 0.0, hi = 0.0;
+        Dot2 lo_acc = Dot2(0.0, 0.0), hi_acc = Dot2(0.0, 0.0);
         [[unroll]] for (int j = 0; j < F; ++j) {  // x[F/2 + 2o - j] is win[2b + F - 1 - j]
-            lo += dec_lo(j) * win[2 * b + F - 1 - j];
-            hi += dec_hi(j) * win[2 * b + F - 1 - j];
+            dot2_add(lo_acc, dec_lo(j), win[2 * b + F - 1 - j]);
+            dot2_add(hi_acc, dec_hi(j), win[2 * b + F - 1 - j]);
         }
+        float lo = dot2_result(lo_acc), hi = dot2_result(hi_acc);
         pc.dst.v[dst_at(plane, line, o)] = lo;
         pc.dst.v[dst_at(plane, line, pc.half_len + o)] = hi;
     }

@@ -49,11 +49,12 @@ void main() {
         [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)  // m == n: the repeated last sample
             win[i] = pc.src.v[column + uint(min(wrap_window(first + i, N), pc.n - 1) * pc.row_stride)];
         [[unroll]] for (int b = 0; b < BLOCK; ++b) {
-            float lo = 0.0, hi = 0.0;
+            Dot2 lo_acc = Dot2(0.0, 0.0), hi_acc = Dot2(0.0, 0.0);
             [[unroll]] for (int j = 0; j < F; ++j) {
-                lo += dec_lo(j) * win[2 * b + F - 1 - j];
-                hi += dec_hi(j) * win[2 * b + F - 1 - j];
+                dot2_add(lo_acc, dec_lo(j), win[2 * b + F - 1 - j]);
+                dot2_add(hi_acc, dec_hi(j), win[2 * b + F - 1 - j]);
             }
+            float lo = dot2_result(lo_acc), hi = dot2_result(hi_acc);
             rule_add(low[b], low_rule, k, lo);
             rule_add(high[b], pc.detail_rule, k, hi);
             int o = o0 + b;

@@ -35,12 +35,14 @@ void main() {
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         if (o0 + b >= M) break;
         [[unroll]] for (int p = 0; p < 2; ++p) {
-            float acc = 0.0;
-            [[unroll]] for (int j = 0; j < Hf; ++j)  // coefficient o + start - j is window slot b + Hf - 1 - j
-                acc += rec_lo(2 * j + p) * low[b + Hf - 1 - j] + rec_hi(2 * j + p) * high[b + Hf - 1 - j];
+            Dot2 acc = Dot2(0.0, 0.0);
+            [[unroll]] for (int j = 0; j < Hf; ++j) {  // coefficient o + start - j is window slot b + Hf - 1 - j
+                dot2_add(acc, rec_lo(2 * j + p), low[b + Hf - 1 - j]);
+                dot2_add(acc, rec_hi(2 * j + p), high[b + Hf - 1 - j]);
+            }
             int m = 2 * (o0 + b) + p + s;
             if (m >= 2 * M) m -= 2 * M;
-            if (m < pc.n) pc.dst.v[dst_at(plane, line, m)] = acc;
+            if (m < pc.n) pc.dst.v[dst_at(plane, line, m)] = dot2_result(acc);
         }
     }
 }
