@@ -16,7 +16,7 @@ void main() {
     LineView out_view = LineView(pc.dst_plane_stride, pc.dst_line_stride, pc.dst_elem_stride);
     for (int p = 0; p < n; ++p) pc.dst.v[lift_slot(out_view, plane, line, p)] = pc.src.v[src_at(plane, line, p)];
     if (n == 1) return;
-    int steps = int(pc.filters.v[SCHEME]);
+    int steps = int(pc.scheme.v[0]);
     for (int s = 0; s < steps; ++s) lift_step(pc.dst, out_view, plane, line, n, s, 1.0);
     lift_scale(pc.dst, out_view, plane, line, n, true);
 }

@@ -16,7 +16,7 @@ void main() {
     LineView coef_view = LineView(pc.src_plane_stride, pc.src_line_stride, pc.src_elem_stride);
     if (n > 1) {
         lift_scale(pc.src, coef_view, plane, line, n, false);
-        int steps = int(pc.filters.v[SCHEME]);
+        int steps = int(pc.scheme.v[0]);
         for (int s = steps - 1; s >= 0; --s) lift_step(pc.src, coef_view, plane, line, n, s, -1.0);
     }
     for (int p = 0; p < n; ++p) pc.dst.v[dst_at(plane, line, p)] = pc.src.v[lift_slot(coef_view, plane, line, p)];

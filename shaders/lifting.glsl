@@ -4,9 +4,8 @@
 // exactly as core/wavelet.hpp states them:
 //   x[q] += c0 x[R(q + o0, n)] + c1 x[R(q + o1, n)] for every q of one parity,
 // R = reflect101, which keeps parity, so a step never reads what it writes.
-// The scheme sits in the filters buffer from float 40 on:
+// The scheme buffer (pc.scheme) holds
 //   [steps, Ke, Ko, then per step: parity, taps, c0, c1, o0, o1].
-const uint SCHEME = 40u;
 
 // Where a line's coefficients live: buffer plus strides.
 struct LineView {
@@ -22,11 +21,11 @@ uint lift_slot(LineView v, uint plane, int line, int pos) {
 
 // sign = +1 applies step s, -1 undoes it.
 void lift_step(Floats coef, LineView v, uint plane, int line, int n, int s, float sign) {
-    uint base = SCHEME + 3u + uint(s) * 6u;
-    int parity = int(pc.filters.v[base]);
-    int taps = int(pc.filters.v[base + 1u]);
-    float c0 = pc.filters.v[base + 2u], c1 = pc.filters.v[base + 3u];
-    int o0 = int(pc.filters.v[base + 4u]), o1 = int(pc.filters.v[base + 5u]);
+    uint base = 3u + uint(s) * 6u;
+    int parity = int(pc.scheme.v[base]);
+    int taps = int(pc.scheme.v[base + 1u]);
+    float c0 = pc.scheme.v[base + 2u], c1 = pc.scheme.v[base + 3u];
+    int o0 = int(pc.scheme.v[base + 4u]), o1 = int(pc.scheme.v[base + 5u]);
     for (int q = parity; q < n; q += 2) {
         float update = c0 * coef.v[lift_slot(v, plane, line, reflect101(q + o0, n))];
         if (taps > 1) update += c1 * coef.v[lift_slot(v, plane, line, reflect101(q + o1, n))];
@@ -37,7 +36,7 @@ void lift_step(Floats coef, LineView v, uint plane, int line, int n, int s, floa
 
 // Multiplies (forward) or divides (inverse) even positions by Ke, odd by Ko.
 void lift_scale(Floats coef, LineView v, uint plane, int line, int n, bool forward) {
-    float ke = pc.filters.v[SCHEME + 1u], ko = pc.filters.v[SCHEME + 2u];
+    float ke = pc.scheme.v[1], ko = pc.scheme.v[2];
     for (int p = 0; p < n; ++p) {
         uint at = lift_slot(v, plane, line, p);
         float k = (p & 1) == 0 ? ke : ko;

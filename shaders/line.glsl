@@ -4,7 +4,7 @@
 layout(push_constant, std430) uniform Push {
     Floats src;
     Floats dst;
-    Floats filters;   // dec_lo, dec_hi, rec_lo, rec_hi: 10 floats each
+    Floats scheme;    // lifting kernels: the lifting scheme (lifting.glsl); unused by the convolutions
     int n;            // samples per input line (forward) / output samples kept (inverse)
     int half_len;     // coefficients in the low half; the high half starts here
     int high_len;     // coefficients in the high half
@@ -16,7 +16,6 @@ layout(push_constant, std430) uniform Push {
     int dst_elem_stride;
     uint dst_plane_stride;
     uint x_is_line;   // 1: invocation x walks lines (column passes, for coalescing)
-    int wavelet;      // filter length (periodization) or wavelet id (lifting)
 } pc;
 
 uint src_at(uint plane, int line, int i) {

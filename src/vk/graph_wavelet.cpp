@@ -37,22 +37,17 @@ struct LineSpec {  // one 1-D pass: `lines` lines of n samples
     bool along_rows;  // true: lines are rows; false: columns
 };
 
-std::vector<float> filter_constants(Wavelet w) {
-    std::vector<float> c(40 + 3 + 24, 0.0f);
-    const auto& fb = core::filter_bank(w);
-    for (int j = 0; j < 10; ++j) {
-        c[std::size_t(j)] = float(fb.dec_lo[std::size_t(j)]);
-        c[std::size_t(10 + j)] = float(fb.dec_hi[std::size_t(j)]);
-        c[std::size_t(20 + j)] = float(fb.rec_lo[std::size_t(j)]);
-        c[std::size_t(30 + j)] = float(fb.rec_hi[std::size_t(j)]);
-    }
+// The lifting scheme as lifting.glsl reads it: [steps, Ke, Ko, then per
+// step: parity, taps, c0, c1, o0, o1].
+std::vector<float> lifting_constants(Wavelet w) {
+    std::vector<float> c(3 + 24, 0.0f);
     const auto& ls = core::lifting_scheme(w);
-    c[40] = float(ls.steps);
-    c[41] = float(ls.scale_even);
-    c[42] = float(ls.scale_odd);
+    c[0] = float(ls.steps);
+    c[1] = float(ls.scale_even);
+    c[2] = float(ls.scale_odd);
     for (int s = 0; s < ls.steps; ++s) {
         const auto& st = ls.step[std::size_t(s)];
-        float* o = &c[std::size_t(43 + 6 * s)];
+        float* o = &c[std::size_t(3 + 6 * s)];
         o[0] = float(st.parity);
         o[1] = float(st.taps);
         o[2] = float(st.coef[0]);
@@ -133,8 +128,10 @@ class WaveletGraph {
 public:
     WaveletGraph(GraphBuilder& g) : g_(g), spec_(g.cfg.fusion) {
         periodization_ = spec_.mode == WaveletMode::Periodization;
-        filters_ = g.constants(filter_constants(spec_.wavelet));
-        taps_ = filter_specialization(spec_.wavelet);
+        if (periodization_)
+            taps_ = filter_specialization(spec_.wavelet);
+        else
+            scheme_ = g.constants(lifting_constants(spec_.wavelet));
         int h = g.cfg.height, w = g.cfg.width;
         for (int l = 0; l < spec_.effective_levels(); ++l) {
             LevelShape s{h, w, (h + 1) / 2, (w + 1) / 2, 0, 0};
@@ -186,7 +183,7 @@ private:
     GraphBuilder& g_;
     const FusionSpec& spec_;
     bool periodization_ = true;
-    VkDeviceAddress filters_ = 0;
+    VkDeviceAddress scheme_ = 0;  // symmetric mode: the lifting scheme
     std::vector<std::uint32_t> taps_;
     std::vector<LevelShape> shapes_;
 
@@ -200,7 +197,7 @@ private:
         return PushConstants()
             .ptr(src.addr)
             .ptr(dst.addr)
-            .ptr(filters_)
+            .ptr(scheme_)
             .i32(ls.n)
             .i32(ls.half_len)
             .i32(ls.high_len)
@@ -211,8 +208,7 @@ private:
             .i32(d_line)
             .i32(d_elem)
             .u32(dst.plane_stride)
-            .u32(ls.along_rows ? 0 : 1)
-            .i32(periodization_ ? core::filter_bank(spec_.wavelet).length : 0);
+            .u32(ls.along_rows ? 0 : 1);
     }
 
     // Lifting: an invocation per line. Convolution: per line, an invocation
