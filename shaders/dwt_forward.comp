@@ -20,21 +20,14 @@ void main() {
     int line = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
     int o0 = block * BLOCK;
     if (o0 >= pc.half_len || line >= pc.lines) return;
-    const int N = 2 * pc.half_len;
-    const int first = F / 2 + 2 * o0 - (F - 1);  // the window's first sample
-    float win[2 * BLOCK + MAX_TAPS - 2];
-    [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)  // m == n: the repeated last sample
-        win[i] = pc.src.v[src_at(plane, line, min(wrap_window(first + i, N), pc.n - 1))];
+    float win[WINDOW];
+    [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)
+        win[i] = pc.src.v[src_at(plane, line, window_sample(o0, i, pc.half_len, pc.n))];
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         int o = o0 + b;
         if (o >= pc.half_len) break;
-        Dot2 lo_acc = Dot2(0.0, 0.0), hi_acc = Dot2(0.0, 0.0);
-        [[unroll]] for (int j = 0; j < F; ++j) {  // x[F/2 + 2o - j] is win[2b + F - 1 - j]
-            dot2_add(lo_acc, dec_lo(j), win[2 * b + F - 1 - j]);
-            dot2_add(hi_acc, dec_hi(j), win[2 * b + F - 1 - j]);
-        }
-        float lo = dot2_result(lo_acc), hi = dot2_result(hi_acc);
-        pc.dst.v[dst_at(plane, line, o)] = lo;
-        pc.dst.v[dst_at(plane, line, pc.half_len + o)] = hi;
+        vec2 lo_hi = analyse(win, b);
+        pc.dst.v[dst_at(plane, line, o)] = lo_hi.x;
+        pc.dst.v[dst_at(plane, line, pc.half_len + o)] = lo_hi.y;
     }
 }

@@ -39,27 +39,20 @@ void main() {
     bool low_columns = x < pc.approx_w;
     bool keep_approx = low_columns && pc.deepest == 0u;
     uint low_rule = (low_columns && pc.deepest != 0u) ? pc.base_rule : pc.detail_rule;
-    const int N = 2 * pc.half_len;
-    const int first = F / 2 + 2 * o0 - (F - 1);
     RuleState low[BLOCK], high[BLOCK];
     for (uint k = 0u; k < pc.frames; ++k) {
         uint plane = (s * pc.frames + k) * pc.channels + c;
         uint column = plane * pc.src_plane_stride + uint(x);
-        float win[2 * BLOCK + MAX_TAPS - 2];
-        [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)  // m == n: the repeated last sample
-            win[i] = pc.src.v[column + uint(min(wrap_window(first + i, N), pc.n - 1) * pc.row_stride)];
+        float win[WINDOW];
+        [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)
+            win[i] = pc.src.v[column + uint(window_sample(o0, i, pc.half_len, pc.n) * pc.row_stride)];
         [[unroll]] for (int b = 0; b < BLOCK; ++b) {
-            Dot2 lo_acc = Dot2(0.0, 0.0), hi_acc = Dot2(0.0, 0.0);
-            [[unroll]] for (int j = 0; j < F; ++j) {
-                dot2_add(lo_acc, dec_lo(j), win[2 * b + F - 1 - j]);
-                dot2_add(hi_acc, dec_hi(j), win[2 * b + F - 1 - j]);
-            }
-            float lo = dot2_result(lo_acc), hi = dot2_result(hi_acc);
-            rule_add(low[b], low_rule, k, lo);
-            rule_add(high[b], pc.detail_rule, k, hi);
+            vec2 lo_hi = analyse(win, b);
+            rule_add(low[b], low_rule, k, lo_hi.x);
+            rule_add(high[b], pc.detail_rule, k, lo_hi.y);
             int o = o0 + b;
             if (keep_approx && o < pc.half_len)
-                pc.approx.v[plane * pc.block_plane_stride + uint(o * pc.row_stride + x)] = lo;
+                pc.approx.v[plane * pc.block_plane_stride + uint(o * pc.row_stride + x)] = lo_hi.x;
         }
     }
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {

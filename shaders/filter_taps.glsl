@@ -66,3 +66,25 @@ const int BLOCK = 4;
 int wrap_window(int a, int m) {
     return min(a < 0 ? a + m : (a >= m ? a - m : a), m - 1);
 }
+
+// The forward kernels' register window: the samples an invocation's BLOCK
+// output pairs o0 .. o0 + BLOCK - 1 read, x[F/2 + 2 o0 - (F - 1) + i] for
+// i < 2 BLOCK + F - 2, periodic over the line's even length 2 half_len, with
+// an odd line's missing last sample repeating sample n - 1.
+const int WINDOW = 2 * BLOCK + MAX_TAPS - 2;
+
+int window_sample(int o0, int i, int half_len, int n) {
+    return min(wrap_window(F / 2 + 2 * o0 - (F - 1) + i, 2 * half_len), n - 1);
+}
+
+// pywt's analysis of output pair o0 + b from the window: (low, high), each a
+// compensated dot product (Dot2) rounded once; x[F/2 + 2o - j] is slot
+// 2b + F - 1 - j.
+vec2 analyse(float win[WINDOW], int b) {
+    Dot2 lo = Dot2(0.0, 0.0), hi = Dot2(0.0, 0.0);
+    [[unroll]] for (int j = 0; j < F; ++j) {
+        dot2_add(lo, dec_lo(j), win[2 * b + F - 1 - j]);
+        dot2_add(hi, dec_hi(j), win[2 * b + F - 1 - j]);
+    }
+    return vec2(dot2_result(lo), dot2_result(hi));
+}
