@@ -40,21 +40,7 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
         const Level& coarse = top ? c : lv[std::size_t(l) + 1];
         c.fused = g.floats(std::uint64_t(g.planes_out()) * c.w * c.h);
         if (top) {  // the base rule on G_L itself
-            g.rec.dispatch("rule_fuse",
-                           PushConstants()
-                               .ptr(c.gauss)
-                               .ptr(c.fused)
-                               .i32(int(c.w))
-                               .i32(int(c.h))
-                               .i32(int(c.w))
-                               .u32(c.w * c.h)
-                               .u32(std::uint32_t(g.cfg.frames))
-                               .u32(std::uint32_t(g.cfg.channels))
-                               .u32(rule_id(g.cfg.fusion.base_rule))
-                               .u32(rule_id(g.cfg.fusion.detail_rule))
-                               .i32(int(c.w))
-                               .i32(int(c.h)),
-                           groups(c.w, 16), groups(c.h, 16), g.planes_out());
+            record_rule_fuse(g, {c.gauss, c.fused, int(c.w), int(c.h), int(c.w), c.w * c.h, int(c.w), int(c.h)});
         } else {  // the detail rule on G_l - pyrUp(G_{l+1}), 2 x 2 outputs per invocation
             g.rec.dispatch("lap_fuse",
                            PushConstants()

@@ -259,21 +259,8 @@ private:
     }
 
     void fuse(const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s, bool deepest) {
-        g_.rec.dispatch("rule_fuse",
-                        PushConstants()
-                            .ptr(coeffs.addr)
-                            .ptr(out.addr)
-                            .i32(s.bw)
-                            .i32(s.bh)
-                            .i32(s.bw)
-                            .u32(coeffs.plane_stride)
-                            .u32(std::uint32_t(g_.cfg.frames))
-                            .u32(std::uint32_t(g_.cfg.channels))
-                            .u32(std::uint32_t(spec_.base_rule))
-                            .u32(std::uint32_t(spec_.detail_rule))
-                            .i32(deepest ? s.cw : 0)
-                            .i32(deepest ? s.ch : 0),
-                        groups(std::uint32_t(s.bw), 16), groups(std::uint32_t(s.bh), 16), g_.planes_out());
+        record_rule_fuse(g_, {coeffs.addr, out.addr, s.bw, s.bh, s.bw, coeffs.plane_stride, deepest ? s.cw : 0,
+                              deepest ? s.ch : 0});
     }
 };
 

@@ -30,6 +30,18 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input);
 VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input);
 VkDeviceAddress record_wavelet(GraphBuilder& g, VkDeviceAddress input);
 
+// A width x height region of S*K*C source planes (plane (s*K + k)*C + c) and
+// of the S*C fused planes (s*C + c), both with these strides. Inside its
+// top-left split_w x split_h corner the base rule applies, the detail rule
+// elsewhere.
+struct RuleFuseRegion {
+    VkDeviceAddress src = 0, dst = 0;
+    int width = 0, height = 0, row_stride = 0;
+    std::uint32_t plane_stride = 0;
+    int split_w = 0, split_h = 0;
+};
+void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& region);
+
 // Records the metric reductions over the fused planes; the two vec4 totals per
 // sensor (pass 0: sharpness sum, luma sum, |I-B| sum; pass 1: squared
 // deviation sum) land at totals0 / totals1 (host-visible).

@@ -1,0 +1,27 @@
+// rule_fuse.comp over one region of every plane: the fusion rules applied
+// coefficient by coefficient across the K frames, shared by the Laplacian
+// top level and the symmetric wavelet levels.
+#include "vk/plan_impl.hpp"
+
+namespace vkfuse::vk {
+
+void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
+    const FusionSpec& spec = g.cfg.fusion;
+    g.rec.dispatch("rule_fuse",
+                   PushConstants()
+                       .ptr(r.src)
+                       .ptr(r.dst)
+                       .i32(r.width)
+                       .i32(r.height)
+                       .i32(r.row_stride)
+                       .u32(r.plane_stride)
+                       .u32(std::uint32_t(g.cfg.frames))
+                       .u32(std::uint32_t(g.cfg.channels))
+                       .u32(std::uint32_t(spec.base_rule))
+                       .u32(std::uint32_t(spec.detail_rule))
+                       .i32(r.split_w)
+                       .i32(r.split_h),
+                   groups(std::uint32_t(r.width), 16), groups(std::uint32_t(r.height), 16), g.planes_out());
+}
+
+}  // namespace vkfuse::vk
