@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "expect_error.hpp"
+#include "max_abs_flips.hpp"
 #include "stress_support.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/reference.hpp"
@@ -17,13 +18,27 @@ namespace {
 
 constexpr double kTolerance = 1e-5;  // SPEC.md: Vulkan vs reference, inputs in [0, 1]
 
-// max-abs near-ties (README "Accuracy") put a few isolated samples beyond the
-// tolerance: allow 1 in 10^4 (at least 4) there, as test_vk_fusion does; a
-// wrong rule or a wrong sensor's data would put far more out.
-std::size_t allowed_outliers(const FusionSpec& s, std::size_t samples) {
+// max-abs near-ties (README "Accuracy") put a few samples beyond the
+// tolerance. For wavelets up to 1 Mpixel each departure must be explained by
+// a near-tie taken the other way (max_abs_flips.hpp), after which every
+// sample holds. The oracle costs a full synthesis per near-tie (0.8 s each at
+// 4096 x 4096, with ~130 of them), so larger wavelet cases and Laplacian
+// levels (no such oracle) allow 1 in 10^4 samples (at least 4), as
+// test_vk_fusion does; a wrong rule or a wrong sensor's data would put far
+// more out.
+constexpr std::size_t kOracleSamples = std::size_t(1) << 20;
+
+bool has_max_abs(const FusionSpec& s) {
     const bool pyramid = s.method == Method::Laplacian || s.method == Method::Wavelet;
-    const bool max_abs = s.base_rule == Rule::MaxAbs || s.detail_rule == Rule::MaxAbs;
-    return pyramid && max_abs ? std::max<std::size_t>(4, samples / 10000) : 0;
+    return pyramid && (s.base_rule == Rule::MaxAbs || s.detail_rule == Rule::MaxAbs);
+}
+
+bool oracle_explains(const FusionSpec& s, std::size_t samples) {
+    return has_max_abs(s) && s.method == Method::Wavelet && samples <= kOracleSamples;
+}
+
+std::size_t allowed_outliers(const FusionSpec& s, std::size_t samples) {
+    return has_max_abs(s) && !oracle_explains(s, samples) ? std::max<std::size_t>(4, samples / 10000) : 0;
 }
 
 // Alternating structured and random frames: distinct per sensor and frame,
@@ -47,8 +62,18 @@ double check(Context& ctx, const FusionSpec& spec, int h, int w, int c, int K, i
     double worst = 0;
     std::size_t outliers = 0;
     for (int s = 0; s < S; ++s) {
-        const ImageD ref = fuse_reference(std::span(framesd).subspan(std::size_t(s) * K, std::size_t(K)), spec);
-        const Mismatch m = compare(gpu.fused[std::size_t(s)], ref, kTolerance);
+        const auto sensor_frames = std::span(framesd).subspan(std::size_t(s) * K, std::size_t(K));
+        const ImageD ref = fuse_reference(sensor_frames, spec);
+        Mismatch m = compare(gpu.fused[std::size_t(s)], ref, kTolerance);
+        if (m.over > 0 && oracle_explains(spec, ref.size())) {
+            const MaxAbsFlips flips = explain_max_abs_flips(sensor_frames, spec, gpu.fused[std::size_t(s)]);
+            report(what + " sensor " + std::to_string(s) + ": " + std::to_string(m.over) + " samples beyond 1e-5, " +
+                       std::to_string(flips.flipped) + " of " + std::to_string(flips.near_ties) +
+                       " max-abs near-ties taken the other way; worst after them",
+                   compare(gpu.fused[std::size_t(s)], flips.adjusted, kTolerance).worst);
+            EXPECT_GT(flips.flipped, 0) << "sensor " << s << ": departures no near-tie explains";
+            m = compare(gpu.fused[std::size_t(s)], flips.adjusted, kTolerance);
+        }
         EXPECT_LE(m.over, allowed_outliers(spec, ref.size())) << "sensor " << s << " worst " << m.worst;
         worst = std::max(worst, m.worst);
         outliers += m.over;
@@ -57,7 +82,7 @@ double check(Context& ctx, const FusionSpec& spec, int h, int w, int c, int K, i
         EXPECT_LE(relative_error(gpu.metrics[std::size_t(s)].sharpness, ref_m.sharpness), 1e-5) << "sensor " << s;
         EXPECT_LE(relative_error(gpu.metrics[std::size_t(s)].contrast, ref_m.contrast), 1e-5) << "sensor " << s;
     }
-    report(what + " (" + std::to_string(outliers) + " samples beyond 1e-5: max-abs near-ties)", worst);
+    report(what + " (" + std::to_string(outliers) + " samples beyond 1e-5 unexplained or allowed)", worst);
     return worst;
 }
 
