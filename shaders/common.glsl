@@ -6,6 +6,22 @@
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { float v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Words { uint v[]; };
 
+// Planes: the buffers a plan keeps on the device between kernels (unpacked
+// frames, pyramid levels, wavelet coefficients, fused planes). Each kernel is
+// built twice: as float32, and with VKFUSE_FP16_STORAGE defined, where planes
+// hold float16 and half the bytes (PlanConfig::precision). Arithmetic is
+// float32 in both; TO_PLANE() rounds a result to the storage type. Uploads,
+// backgrounds, metric partials and read-back stay Floats.
+#ifdef VKFUSE_FP16_STORAGE
+#extension GL_EXT_shader_16bit_storage : require
+#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
+layout(buffer_reference, std430, buffer_reference_align = 2) buffer Planes { float16_t v[]; };
+#define TO_PLANE(x) float16_t(x)
+#else
+#define Planes Floats
+#define TO_PLANE(x) (x)
+#endif
+
 // Item index of a 1-D kernel of group_size invocations per group, dispatched
 // as an (x, y) grid of workgroups (grid_1d() in recorder.hpp: x alone is
 // limited to 65535 groups). The size is passed in because gl_WorkGroupSize is
@@ -64,7 +80,7 @@ float pyr_up_h(vec3 v, int parity, int n) {
     return parity == 0 ? (1.0 * v.x + 6.0 * v.y) + 1.0 * v.z : 4.0 * v.y + 4.0 * v.z;
 }
 
-mat2 pyr_up_block(Floats src, uint base, int sw, int sh, int i, int j) {
+mat2 pyr_up_block(Planes src, uint base, int sw, int sh, int i, int j) {
     // Source rows / columns: even outputs read (i - 1 reflected, i, i + 1
     // clamped), odd outputs (i, i + 1 clamped): the three cover both.
     ivec3 r = ivec3(i == 0 ? min(1, sh - 1) : i - 1, i, min(i + 1, sh - 1));

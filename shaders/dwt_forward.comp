@@ -27,7 +27,7 @@ void main() {
         int o = o0 + b;
         if (o >= pc.half_len) break;
         vec2 lo_hi = analyse(win, b);
-        pc.dst.v[dst_at(plane, line, o)] = lo_hi.x;
-        pc.dst.v[dst_at(plane, line, pc.half_len + o)] = lo_hi.y;
+        pc.dst.v[dst_at(plane, line, o)] = TO_PLANE(lo_hi.x);
+        pc.dst.v[dst_at(plane, line, pc.half_len + o)] = TO_PLANE(lo_hi.y);
     }
 }

@@ -13,9 +13,9 @@
 // fusion pass, K planes of coefficients are neither written nor read back.
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
-    Floats src;       // the row pass's output, plane (s*K + k)*C + c
-    Floats approx;    // each frame's coefficient block; only its approximation is written
-    Floats fused;     // fused block, plane s*C + c
+    Planes src;       // the row pass's output, plane (s*K + k)*C + c
+    Planes approx;    // each frame's coefficient block; only its approximation is written
+    Planes fused;     // fused block, plane s*C + c
     int n;            // samples per column (the level's input height)
     int half_len;     // coefficients per half column (periodization: high half as long)
     int columns;      // block width
@@ -52,14 +52,14 @@ void main() {
             rule_add(high[b], pc.detail_rule, k, lo_hi.y);
             int o = o0 + b;
             if (keep_approx && o < pc.half_len)
-                pc.approx.v[plane * pc.block_plane_stride + uint(o * pc.row_stride + x)] = lo_hi.x;
+                pc.approx.v[plane * pc.block_plane_stride + uint(o * pc.row_stride + x)] = TO_PLANE(lo_hi.x);
         }
     }
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         int o = o0 + b;
         if (o >= pc.half_len) break;
         uint at = z * pc.block_plane_stride + uint(o * pc.row_stride + x);
-        pc.fused.v[at] = rule_result(low[b], low_rule, pc.frames);
-        pc.fused.v[at + uint(pc.half_len * pc.row_stride)] = rule_result(high[b], pc.detail_rule, pc.frames);
+        pc.fused.v[at] = TO_PLANE(rule_result(low[b], low_rule, pc.frames));
+        pc.fused.v[at + uint(pc.half_len * pc.row_stride)] = TO_PLANE(rule_result(high[b], pc.detail_rule, pc.frames));
     }
 }

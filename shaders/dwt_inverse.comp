@@ -42,7 +42,7 @@ void main() {
             }
             int m = 2 * (o0 + b) + p + s;
             if (m >= 2 * M) m -= 2 * M;
-            if (m < pc.n) pc.dst.v[dst_at(plane, line, m)] = dot2_result(acc);
+            if (m < pc.n) pc.dst.v[dst_at(plane, line, m)] = TO_PLANE(dot2_result(acc));
         }
     }
 }

@@ -6,8 +6,8 @@
 // R_{l+1} (pyr_up_block).
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
-    Floats coarse;  // R_{l+1}, cw x ch per plane
-    Floats fine;    // C_l, width x height per plane; becomes R_l
+    Planes coarse;  // R_{l+1}, cw x ch per plane
+    Planes fine;    // C_l, width x height per plane; becomes R_l
     int width;
     int height;
     int cw;
@@ -24,6 +24,6 @@ void main() {
             int y = 2 * i + a, x = 2 * j + b;
             if (y >= pc.height || x >= pc.width) continue;
             uint at = z * uint(pc.width * pc.height) + uint(y * pc.width + x);
-            pc.fine.v[at] = up[a][b] + pc.fine.v[at];
+            pc.fine.v[at] = TO_PLANE(up[a][b] + pc.fine.v[at]);
         }
 }

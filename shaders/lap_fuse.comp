@@ -8,9 +8,9 @@
 // (s*K + k)*C + c, the fused plane (s, c) is s*C + c.
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
-    Floats src;     // G_l planes, width x height
-    Floats coarse;  // G_{l+1} planes, cw x ch
-    Floats dst;     // fused planes, width x height
+    Planes src;     // G_l planes, width x height
+    Planes coarse;  // G_{l+1} planes, cw x ch
+    Planes dst;     // fused planes, width x height
     int width;
     int height;
     int cw;
@@ -41,6 +41,6 @@ void main() {
         for (int b = 0; b < 2; ++b) {
             int y = 2 * i + a, x = 2 * j + b;
             if (y < pc.height && x < pc.width)
-                pc.dst.v[z * plane_size + uint(y * pc.width + x)] = rule_result(st[2 * a + b], pc.rule, pc.frames);
+                pc.dst.v[z * plane_size + uint(y * pc.width + x)] = TO_PLANE(rule_result(st[2 * a + b], pc.rule, pc.frames));
         }
 }

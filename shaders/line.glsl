@@ -2,8 +2,8 @@
 // (elements 1 apart) or a column (elements row_stride apart); the same kernel
 // serves both axes through these strides.
 layout(push_constant, std430) uniform Push {
-    Floats src;
-    Floats dst;
+    Planes src;
+    Planes dst;
     Floats scheme;    // lifting kernels: the lifting scheme (lifting.glsl); unused by the convolutions
     int n;            // samples per input line (forward) / output samples kept (inverse)
     int half_len;     // coefficients in the low half; the high half starts here

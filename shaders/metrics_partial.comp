@@ -12,7 +12,7 @@
 // of its mean) and a nearly flat one sums small deviations, not its level.
 layout(local_size_x = 256) in;
 layout(push_constant, std430) uniform Push {
-    Floats img;       // planes s*C + c, width x height
+    Planes img;       // planes s*C + c, width x height
     Floats bg;        // background planes, same layout (if has_bg)
     Floats partials;  // vec4 per (sensor, group)
     Floats totals;    // pass 1 reads the pass-0 totals: vec4 per sensor

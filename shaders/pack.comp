@@ -5,7 +5,7 @@
 // straight into host-visible memory: the only copy of the image the host reads.
 layout(local_size_x = 256) in;
 layout(push_constant, std430) uniform Push {
-    Floats src;
+    Planes src;
     Floats dst;
     uint pixels;
     uint channels;

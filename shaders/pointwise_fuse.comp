@@ -5,8 +5,8 @@
 // (the background model averages up to a few hundred frames).
 layout(local_size_x = 256) in;
 layout(push_constant, std430) uniform Push {
-    Floats src;  // planes (s*K + k)*C + c
-    Floats dst;  // planes s*C + c
+    Planes src;  // planes (s*K + k)*C + c
+    Planes dst;  // planes s*C + c
     uint pixels;
     uint frames;
     uint channels;
@@ -48,5 +48,5 @@ void main() {
             result = mean / float(pc.frames);
         }
     }
-    pc.dst.v[z * pc.pixels + p] = result;
+    pc.dst.v[z * pc.pixels + p] = TO_PLANE(result);
 }

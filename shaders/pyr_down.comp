@@ -5,8 +5,8 @@
 // source sample 2x (reflect-101 borders), output ((w+1)/2, (h+1)/2).
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
-    Floats src;
-    Floats dst;
+    Planes src;
+    Planes dst;
     int sw;
     int sh;
     int dw;
@@ -47,6 +47,6 @@ void main() {
         }
         float acc = 0.0;
         for (int i = 0; i < 5; ++i) acc += K5[i] * h[i];
-        pc.dst.v[z * uint(pc.dw * pc.dh) + uint(y * pc.dw + x)] = acc * (1.0 / 256.0);
+        pc.dst.v[z * uint(pc.dw * pc.dh) + uint(y * pc.dw + x)] = TO_PLANE(acc * (1.0 / 256.0));
     }
 }

@@ -8,8 +8,8 @@
 // detail rule elsewhere.
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
-    Floats src;
-    Floats dst;
+    Planes src;
+    Planes dst;
     int width;       // region fused per plane
     int height;
     int row_stride;  // of src and dst planes
@@ -34,5 +34,5 @@ void main() {
         uint plane = (s * pc.frames + k) * pc.channels + c;
         rule_add(st, rule, k, pc.src.v[plane * pc.plane_stride + offset]);
     }
-    pc.dst.v[z * pc.plane_stride + offset] = rule_result(st, rule, pc.frames);
+    pc.dst.v[z * pc.plane_stride + offset] = TO_PLANE(rule_result(st, rule, pc.frames));
 }

@@ -6,7 +6,7 @@
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
     Words src;
-    Floats dst;
+    Planes dst;
     uint width;
     uint height;
     uint channels;
@@ -28,6 +28,6 @@ void main() {
         } else {
             v = uintBitsToFloat(pc.src.v[idx]);
         }
-        pc.dst.v[(f * pc.channels + c) * pc.plane_stride + pix] = v;
+        pc.dst.v[(f * pc.channels + c) * pc.plane_stride + pix] = TO_PLANE(v);
     }
 }

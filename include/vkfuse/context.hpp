@@ -16,6 +16,7 @@ struct DeviceInfo {
     std::string api_version;  // "1.3.230"
     bool usable = false;      // meets vkfuse's needs (Vulkan 1.2, buffer device address)
     std::string why_not;      // when !usable, the missing capability
+    bool fp16_storage = false;  // 16-bit storage buffers and float16 in shaders: Precision::Fp16Storage
 };
 
 struct ContextOptions {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vkfuse/context.hpp"
@@ -12,6 +13,19 @@
 #include "vkfuse/metrics.hpp"
 
 namespace vkfuse {
+
+// How a plan stores the planes it keeps on the device between kernels
+// (unpacked frames, pyramid levels, wavelet coefficients, fused planes).
+// Arithmetic is float32 either way, and frames, backgrounds, metrics and the
+// fused image read back are float32. Fp16Storage halves the bytes each kernel
+// moves, which is what a memory-bound GPU spends its time on, at about 1e-3
+// relative error (vkfuse-bench reports it per cell); it is never the default
+// and needs DeviceInfo::fp16_storage, else Plan throws Error(Device). Planes
+// then hold magnitudes up to 65504: where a value overflowed (inputs far
+// outside [0, 1]), fused() and metrics() throw Error(Numeric) instead of
+// returning Inf or NaN.
+enum class Precision { Fp32, Fp16Storage };
+std::string_view to_string(Precision);
 
 struct PlanConfig {
     FusionSpec fusion;
@@ -25,6 +39,7 @@ struct PlanConfig {
     bool want_metrics = true;   // compute sharpness and contrast per sensor
     bool background_diff = false;  // also the difference with each sensor's background
     bool profile = false;       // per-kernel GPU timestamps (Plan::profile)
+    Precision precision = Precision::Fp32;
 };
 
 // Time one kernel (or a group of dispatches) took on the device in the last run.

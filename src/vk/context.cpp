@@ -138,8 +138,13 @@ void Context::Impl::create_device() {
     qci.queueFamilyIndex = queue_family;
     qci.queueCount = 1;
     qci.pQueuePriorities = &priority;
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     f12.bufferDeviceAddress = VK_TRUE;
+    // The _fp16 kernels' float16 planes, enabled only where the device has them.
+    f11.storageBuffer16BitAccess = info.fp16_storage;
+    f12.shaderFloat16 = info.fp16_storage;
+    f12.pNext = &f11;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &f12;
     dci.queueCreateInfoCount = 1;

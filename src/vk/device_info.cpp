@@ -47,14 +47,17 @@ PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
         e.info.why_not = "Vulkan " + e.info.api_version + " < 1.2";
         return e;
     }
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     f.pNext = &f12;
+    f12.pNext = &f11;
     api.vkGetPhysicalDeviceFeatures2(dev, &f);
     if (!f12.bufferDeviceAddress) {
         e.info.why_not = "no bufferDeviceAddress feature";
         return e;
     }
+    e.info.fp16_storage = f11.storageBuffer16BitAccess && f12.shaderFloat16;
     e.info.usable = true;
     return e;
 }

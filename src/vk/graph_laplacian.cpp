@@ -29,7 +29,7 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
         auto& c = lv[std::size_t(l)];
         c.w = (p.w + 1) / 2;
         c.h = (p.h + 1) / 2;
-        c.gauss = g.floats(std::uint64_t(g.planes_in()) * c.w * c.h);
+        c.gauss = g.planes(std::uint64_t(g.planes_in()) * c.w * c.h);
         g.rec.dispatch("pyr_down", PushConstants().ptr(p.gauss).ptr(c.gauss).i32(int(p.w)).i32(int(p.h)).i32(int(c.w)).i32(int(c.h)),
                        groups(c.w, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
     }
@@ -38,7 +38,7 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
         auto& c = lv[std::size_t(l)];
         const bool top = l == L;
         const Level& coarse = top ? c : lv[std::size_t(l) + 1];
-        c.fused = g.floats(std::uint64_t(g.planes_out()) * c.w * c.h);
+        c.fused = g.planes(std::uint64_t(g.planes_out()) * c.w * c.h);
         if (top) {  // the base rule on G_L itself
             record_rule_fuse(g, {c.gauss, c.fused, int(c.w), int(c.h), int(c.w), c.w * c.h, int(c.w), int(c.h)});
         } else {  // the detail rule on G_l - pyrUp(G_{l+1}), 2 x 2 outputs per invocation

@@ -5,7 +5,7 @@ namespace vkfuse::vk {
 
 VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input) {
     const std::uint32_t pixels = std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height);
-    const VkDeviceAddress out = g.floats(std::uint64_t(g.planes_out()) * pixels);
+    const VkDeviceAddress out = g.planes(std::uint64_t(g.planes_out()) * pixels);
     const Grid grid = grid_1d(pixels, 256);
     const Method method = g.cfg.fusion.method;
     const std::uint32_t kernel_method = method == Method::Mean ? 2 : method == Method::ChannelSum ? 1 : 0;

@@ -145,16 +145,16 @@ public:
 
     VkDeviceAddress record(VkDeviceAddress input) {
         const auto& top = shapes_.front();
-        const VkDeviceAddress scratch = g_.floats(std::uint64_t(g_.planes_in()) * top.h * top.bw);
+        const VkDeviceAddress scratch = g_.planes(std::uint64_t(g_.planes_in()) * top.h * top.bw);
         std::vector<PlaneSet> fused;
         PlaneSet a{input, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
         const int L = int(shapes_.size());
         for (int l = 0; l < L; ++l) {
             const auto& s = shapes_[std::size_t(l)];
             PlaneSet t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
-            PlaneSet d{g_.floats(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
+            PlaneSet d{g_.planes(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             forward(a, t, {s.w, s.cw, high(s.w, s.cw), s.h, true}, g_.planes_in());
-            PlaneSet f{g_.floats(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
+            PlaneSet f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             if (periodization_) {
                 fuse_columns(t, d, f, s, l == L - 1);
             } else {
@@ -165,8 +165,8 @@ public:
             a = {d.addr, s.bw, d.plane_stride};
         }
         g_.rec.mark("dwt_and_fuse");
-        const VkDeviceAddress out_addr = g_.floats(std::uint64_t(g_.planes_out()) * g_.cfg.width * g_.cfg.height);
-        const VkDeviceAddress inv_scratch = g_.floats(std::uint64_t(g_.planes_out()) * top.h * top.bw);
+        const VkDeviceAddress out_addr = g_.planes(std::uint64_t(g_.planes_out()) * g_.cfg.width * g_.cfg.height);
+        const VkDeviceAddress inv_scratch = g_.planes(std::uint64_t(g_.planes_out()) * top.h * top.bw);
         for (int l = L - 1; l >= 0; --l) {
             const auto& s = shapes_[std::size_t(l)];
             PlaneSet u{inv_scratch, s.bw, std::uint32_t(s.h * s.bw)};

@@ -24,10 +24,23 @@ void validate_config(const PlanConfig& c) {
 
 std::size_t pixel_bytes(PixelType t) { return t == PixelType::U8 ? 1 : 4; }
 
+void check_precision(const PlanConfig& c, const DeviceInfo& device) {
+    if (c.precision == Precision::Fp16Storage && !device.fp16_storage)
+        throw Error(ErrorKind::Device, "precision fp16: " + device.name +
+                                           " lacks 16-bit storage buffers or float16 shaders");
+}
+
+// The kernels of one precision: shaders/<name>.comp built with float16 planes
+// is embedded as <name>_fp16 (CMakeLists.txt).
+std::string kernel_variant(Precision p) { return p == Precision::Fp16Storage ? "_fp16" : ""; }
+
 }  // namespace
+
+std::string_view to_string(Precision p) { return p == Precision::Fp16Storage ? "fp16" : "fp32"; }
 
 Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context), cfg(config) {
     validate_config(cfg);
+    check_precision(cfg, ctx.info);
     const std::size_t frame_bytes = std::size_t(cfg.height) * cfg.width * cfg.channels * pixel_bytes(cfg.input);
     const std::size_t plane_floats = std::size_t(cfg.height) * cfg.width;
     const std::size_t sensor_floats = plane_floats * cfg.channels;
@@ -67,10 +80,10 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context
 }
 
 void Plan::Impl::record() {
-    vk::Recorder rec(ctx, cmd, queries);
+    vk::Recorder rec(ctx, cmd, queries, kernel_variant(cfg.precision));
     vk::GraphBuilder g{ctx, cfg, rec, buffers};
     const std::uint32_t w = std::uint32_t(cfg.width), h = std::uint32_t(cfg.height);
-    VkDeviceAddress input = g.floats(std::uint64_t(g.planes_in()) * w * h);
+    VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * w * h);
     rec.dispatch("unpack",
                  vk::PushConstants()
                      .ptr(upload.address())
@@ -153,6 +166,19 @@ void check_view(const FrameView& v, const PlanConfig& c, const std::string& what
     if (!any_type && v.type != c.input) throw Error(ErrorKind::InvalidArgument, what + ": pixel type differs from the plan's");
 }
 
+// float16 planes hold magnitudes up to 65504; beyond that a plane sample
+// becomes Inf and the results Inf or NaN. Inputs in [0, 1] stay far inside
+// at any level count, so this is checked where results are read, not on
+// every input sample: a non-finite result of an fp16 plan is that overflow.
+void check_fp16_range(const PlanConfig& c, int sensor, std::span<const float> results) {
+    if (c.precision != Precision::Fp16Storage) return;
+    for (float v : results)
+        if (!std::isfinite(v))
+            throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) +
+                                                ": a value left float16's range (65504) in a precision fp16 plan; "
+                                                "fuse this input with Precision::Fp32");
+}
+
 }  // namespace
 
 Plan::Plan(Context& context, const PlanConfig& config) : impl_(std::make_unique<Impl>(context.impl(), config)) {}
@@ -212,6 +238,7 @@ const Image& Plan::fused(int sensor) const {
     if (!im.fused_fresh[std::size_t(sensor)]) {
         img = Image(im.cfg.height, im.cfg.width, im.cfg.channels);
         const float* src = static_cast<const float*>(im.readback.mapped()) + std::size_t(sensor) * img.size();
+        check_fp16_range(im.cfg, sensor, std::span(src, img.size()));
         std::memcpy(img.data.data(), src, img.size() * sizeof(float));
         im.fused_fresh[std::size_t(sensor)] = true;
     }
@@ -228,6 +255,8 @@ Metrics Plan::metrics(int sensor) const {
                                                     im.totals_offset);
     const float* t0 = t + std::size_t(sensor) * 4;
     const float* t1 = t + std::size_t(im.cfg.sensors) * 4 + std::size_t(sensor) * 4;
+    check_fp16_range(im.cfg, sensor, std::span(t0, 4));
+    check_fp16_range(im.cfg, sensor, std::span(t1, 4));
     const double n = double(im.cfg.height) * im.cfg.width;
     Metrics m;
     m.sharpness = double(t0[0]) / n;
@@ -261,6 +290,13 @@ namespace vkfuse::vk {
 
 VkDeviceAddress GraphBuilder::floats(std::uint64_t count) {
     buffers.emplace_back(ctx, count * sizeof(float), MemoryUse::Device);
+    return buffers.back().address();
+}
+
+VkDeviceAddress GraphBuilder::planes(std::uint64_t count) {
+    const std::uint64_t bytes_per_sample = cfg.precision == Precision::Fp16Storage ? 2 : 4;
+    // Rounded up to whole floats: a float16 plane set of odd length stays 4-byte sized.
+    buffers.emplace_back(ctx, (count * bytes_per_sample + 3) / 4 * 4, MemoryUse::Device);
     return buffers.back().address();
 }
 

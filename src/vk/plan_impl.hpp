@@ -17,8 +17,11 @@ struct GraphBuilder {
 
     std::uint32_t planes_in() const { return std::uint32_t(cfg.sensors * cfg.frames * cfg.channels); }
     std::uint32_t planes_out() const { return std::uint32_t(cfg.sensors * cfg.channels); }
-    // A new device buffer of count floats; returns its device address.
+    // A new device buffer of count float32s; returns its device address.
     VkDeviceAddress floats(std::uint64_t count);
+    // A new device buffer of count plane samples (float32, or float16 under
+    // Precision::Fp16Storage: `Planes` in common.glsl); its device address.
+    VkDeviceAddress planes(std::uint64_t count);
     // A small host-written buffer holding values (filter taps, ...); its address.
     VkDeviceAddress constants(const std::vector<float>& values);
 };

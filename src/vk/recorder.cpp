@@ -1,5 +1,7 @@
 #include "vk/recorder.hpp"
 
+#include <utility>
+
 #include "vkfuse/error.hpp"
 
 namespace vkfuse::vk {
@@ -11,8 +13,8 @@ PushConstants& PushConstants::put(const void* v, std::size_t n) {
     return *this;
 }
 
-Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries)
-    : ctx_(ctx), cmd_(cmd), queries_(queries) {
+Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, std::string variant)
+    : ctx_(ctx), cmd_(cmd), queries_(queries), variant_(std::move(variant)) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     check(ctx.api->vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
     if (queries_) {
@@ -40,7 +42,7 @@ void Recorder::dispatch(const std::string& shader, const PushConstants& push, st
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     first_ = false;
     auto& api = *ctx_.api;
-    api.vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader, specialization));
+    api.vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader + variant_, specialization));
     api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
     api.vkCmdDispatch(cmd_, gx, gy, gz);
 }

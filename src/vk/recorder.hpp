@@ -13,8 +13,9 @@ class Recorder {
 public:
     static constexpr std::uint32_t kMaxTimestamps = 512;
 
-    // queries may be VK_NULL_HANDLE (no profiling).
-    Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries);
+    // queries may be VK_NULL_HANDLE (no profiling). variant is appended to
+    // every shader name dispatched ("" or "_fp16": the plan's precision).
+    Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, std::string variant);
 
     // Records shader with push constants over groups (x, y, z). Everything the
     // previous dispatches wrote is visible to it. specialization: the values of
@@ -31,6 +32,7 @@ private:
     Context::Impl& ctx_;
     VkCommandBuffer cmd_;
     VkQueryPool queries_;
+    std::string variant_;
     bool first_ = true;
     std::vector<std::string> names_;
 
