@@ -32,7 +32,6 @@ bool parse_dimension(std::string_view text, int& out) {
 }  // namespace
 
 std::string_view to_string(Backend b) { return b == Backend::Cpu ? "cpu" : "vulkan"; }
-std::string_view to_string(Precision) { return "fp32"; }
 
 std::string label(const MethodVariant& m) {
     std::string out(vkfuse::to_string(m.method));
@@ -60,9 +59,8 @@ Backend parse_backend(std::string_view option, std::string_view text) {
 
 Precision parse_precision(std::string_view option, std::string_view text) {
     if (text == "fp32") return Precision::Fp32;
-    if (text == "fp16")
-        throw UsageError(std::string(option) + " fp16: fp16 storage is not implemented in vkfuse yet (only fp32)");
-    throw UsageError(std::string(option) + ": unknown precision \"" + std::string(text) + "\" (expected fp32)");
+    if (text == "fp16") return Precision::Fp16Storage;
+    throw UsageError(std::string(option) + ": unknown precision \"" + std::string(text) + "\" (expected fp32, fp16)");
 }
 
 Size parse_size(std::string_view option, std::string_view text) {
@@ -103,6 +101,11 @@ const std::vector<int>& all_frame_counts() {
 const std::vector<int>& all_sensor_counts() {
     static const std::vector<int> s{1, 8, 64};
     return s;
+}
+
+const std::vector<Precision>& all_precisions() {
+    static const std::vector<Precision> p{Precision::Fp32, Precision::Fp16Storage};
+    return p;
 }
 
 }  // namespace vkfuse::bench

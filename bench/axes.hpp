@@ -5,14 +5,16 @@
 #include <vector>
 
 #include "vkfuse/fusion.hpp"
+#include "vkfuse/plan.hpp"
 
 namespace vkfuse::bench {
 
 enum class Backend { Cpu, Vulkan };
 
-// Only fp32 exists: the engine has no fp16 storage yet (SPEC.md's optional
-// reduced-precision modes); the axis is here so results say what they measured.
-enum class Precision { Fp32 };
+// The plan's storage precision (vkfuse/plan.hpp): fp32, or fp16 storage
+// (SPEC.md's optional reduced-precision mode), a Vulkan-only axis that is
+// never in the default subset and is reported against the same reference.
+using vkfuse::Precision;
 
 // A fusion method, and for Method::Wavelet the wavelet family.
 struct MethodVariant {
@@ -29,7 +31,6 @@ struct Size {
 };
 
 std::string_view to_string(Backend);
-std::string_view to_string(Precision);
 // "channel-sum", "laplacian", "wavelet/bior4.4".
 std::string label(const MethodVariant&);
 // "320x240", with the common name where there is one: "QVGA".
@@ -38,7 +39,7 @@ std::string short_size_name(Size);  // "QVGA", "VGA", "1080p", "4096^2", else "W
 
 // Parsers throw UsageError (options.hpp) naming the option and the bad value.
 Backend parse_backend(std::string_view option, std::string_view text);
-Precision parse_precision(std::string_view option, std::string_view text);
+Precision parse_precision(std::string_view option, std::string_view text);  // fp32, fp16
 Size parse_size(std::string_view option, std::string_view text);  // "WxH" or qvga, vga, 1080p, 4k
 
 // Every value each axis can take, in the order the matrix walks them.
@@ -46,5 +47,6 @@ std::vector<MethodVariant> all_method_variants();
 const std::vector<Size>& all_sizes();
 const std::vector<int>& all_frame_counts();
 const std::vector<int>& all_sensor_counts();
+const std::vector<Precision>& all_precisions();
 
 }  // namespace vkfuse::bench

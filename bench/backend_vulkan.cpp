@@ -21,6 +21,7 @@ PlanConfig plan_config(const Cell& cell, bool profile) {
     cfg.want_metrics = true;
     cfg.background_diff = true;
     cfg.profile = profile;
+    cfg.precision = cell.precision;
     return cfg;
 }
 

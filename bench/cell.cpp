@@ -17,8 +17,9 @@ bool Cell::same_workload(const Cell& o) const {
 std::string Cell::describe() const {
     std::string out = label(method);
     if (levels > 0) out += " L" + std::to_string(levels);
-    return out + " " + short_size_name(size) + " K" + std::to_string(frames) + " S" + std::to_string(sensors) + " " +
+    out += " " + short_size_name(size) + " K" + std::to_string(frames) + " S" + std::to_string(sensors) + " " +
            std::string(to_string(backend));
+    return precision == Precision::Fp32 ? out : out + " " + std::string(to_string(precision));
 }
 
 }  // namespace vkfuse::bench

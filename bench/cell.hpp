@@ -20,7 +20,7 @@ struct Cell {
     FusionSpec fusion() const;
     // Cells that differ only in backend share inputs, reference and peer.
     bool same_workload(const Cell& other) const;
-    // "wavelet/bior4.4 L3 QVGA K3 S1 vulkan"
+    // "wavelet/bior4.4 L3 QVGA K3 S1 vulkan", "... vulkan fp16"
     std::string describe() const;
 };
 

@@ -73,8 +73,9 @@ void print_environment(const Environment& env, const Options& o, double budget) 
         std::printf("peers: %s %s\n", env.peers->python().c_str(), VKFUSE_BENCH_PEER_SCRIPT);
     else
         std::printf("peers: not available (%s); peer columns stay empty\n", env.peers->why_not().c_str());
-    std::printf("precision: fp32 only (fp16 storage is not implemented yet); memory limit %.1f GiB\n",
-                budget / (1024.0 * 1024.0 * 1024.0));
+    const bool fp16 = env.vulkan && env.vulkan->device().fp16_storage;
+    std::printf("precision: fp32 (fp16 storage %s; --precision fp16 or --full adds its cells); memory limit %.1f GiB\n",
+                fp16 ? "supported" : "not supported by the device", budget / (1024.0 * 1024.0 * 1024.0));
     std::printf("host: %u CPUs, load average %.2f at start (other processes share what is timed)\n\n",
                 std::thread::hardware_concurrency(), load_average());
 }
@@ -116,8 +117,13 @@ void report(CellResult r, std::vector<CellResult>& out) {
 
 // The cells of one workload (same inputs, different backends).
 void run_workload(Environment& env, const Options& o, std::vector<Cell> cells, std::vector<CellResult>& out) {
-    for (auto& c : cells)
-        if (c.backend == Backend::Vulkan && c.skip.empty() && !env.vulkan) c.skip = "no Vulkan device";
+    for (auto& c : cells) {
+        if (c.backend != Backend::Vulkan || !c.skip.empty()) continue;
+        if (!env.vulkan)
+            c.skip = "no Vulkan device";
+        else if (c.precision == Precision::Fp16Storage && !env.vulkan->device().fp16_storage)
+            c.skip = "fp16 storage: " + env.vulkan->device().name + " lacks 16-bit storage buffers or float16 shaders";
+    }
     const bool any = std::any_of(cells.begin(), cells.end(), [](const Cell& c) { return c.skip.empty(); });
     if (!any) {
         for (const auto& c : cells) report(unmeasured(c, env), out);

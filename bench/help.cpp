@@ -19,15 +19,18 @@ Scopes:
               With any axis filter the default becomes one block: the given axes
               with QVGA, K=3, S=1, every method and both backends for the rest.
   --quick     seconds: channel-sum, brovey, laplacian, wavelet/bior4.4 at 160x120,
-              K=3, S=1 and 2 (the ctest smoke run; filters replace its axes).
-  --full      every cell: 7 methods x 2 backends x 4 sizes x K 2,3,5 x S 1,8,64
-              (hours on lavapipe).
+              K=3, S=1 and 2, vulkan also in fp16 (the ctest smoke run; filters
+              replace its axes).
+  --full      every cell: 7 methods x 2 backends x 4 sizes x K 2,3,5 x S 1,8,64,
+              vulkan in fp32 and fp16 (hours on lavapipe).
+  Only --quick and --full have fp16 cells unless --precision asks for them.
 
 Filters (comma lists; each replaces that axis of the scope):
   --method M        channel-sum, brovey, laplacian, wavelet
   --wavelet W       haar, db2, bior2.2, bior4.4 (alone it implies --method wavelet)
   --backend B       cpu (double-precision reference), vulkan
-  --precision P     fp32 only: fp16 storage is not implemented in vkfuse yet
+  --precision P     fp32, fp16 (float16 planes between kernels, float32 arithmetic;
+                    vulkan only, where the device has 16-bit storage)
   --size WxH        e.g. 320x240, or qvga, vga, 1080p, 4k (4096x4096)
   --frames K        2..16 (channel-sum exists for K=3 only)
   --sensors S       1..4096

@@ -18,6 +18,8 @@ struct Slice {
     std::vector<Size> sizes;
     std::vector<int> frames;
     std::vector<int> sensors;
+    // fp16 storage is never in a default; --full and --quick add it (Vulkan only).
+    std::vector<Precision> precisions{Precision::Fp32};
 };
 
 constexpr Size kQvga{320, 240}, kVga{640, 480};
@@ -50,8 +52,9 @@ std::vector<Slice> scope_slices(Scope scope) {
                       {Method::Brovey, Wavelet::Bior44},
                       {Method::Laplacian, Wavelet::Bior44},
                       {Method::Wavelet, Wavelet::Bior44}},
-                     both, {kQuickSize}, {3}, {1, 2}}};
-        case Scope::Full: return {{all_method_variants(), both, all_sizes(), all_frame_counts(), all_sensor_counts()}};
+                     both, {kQuickSize}, {3}, {1, 2}, all_precisions()}};
+        case Scope::Full:
+            return {{all_method_variants(), both, all_sizes(), all_frame_counts(), all_sensor_counts(), all_precisions()}};
         case Scope::Default: break;
     }
     return default_slices();
@@ -59,7 +62,7 @@ std::vector<Slice> scope_slices(Scope scope) {
 
 bool any_axis_filter(const Options& o) {
     return !o.methods.empty() || !o.wavelets.empty() || !o.backends.empty() || !o.sizes.empty() || !o.frames.empty() ||
-           !o.sensors.empty();
+           !o.sensors.empty() || !o.precisions.empty();
 }
 
 template <class T>
@@ -97,6 +100,7 @@ std::vector<Slice> filtered_slices(const Options& o) {
         replace_if_given(s.sizes, o.sizes);
         replace_if_given(s.frames, o.frames);
         replace_if_given(s.sensors, o.sensors);
+        replace_if_given(s.precisions, o.precisions);
     }
     return slices;
 }
@@ -131,20 +135,23 @@ void add_slice(const Options& o, const Slice& s, double budget, std::vector<Cell
     for (const auto& m : s.methods)
         for (int levels : level_counts(o, m.method))
             for (Backend b : s.backends)
-                for (Size size : s.sizes)
-                    for (int k : s.frames)
-                        for (int sensors : s.sensors) {
-                            if (m.method == Method::ChannelSum && k != 3) continue;  // defined for K = 3 only
-                            Cell c{m, levels, b, Precision::Fp32, size, k, sensors, ""};
-                            c.skip = skip_reason(c, budget);
-                            out.push_back(c);
-                        }
+                for (Precision p : s.precisions)
+                    for (Size size : s.sizes)
+                        for (int k : s.frames)
+                            for (int sensors : s.sensors) {
+                                if (m.method == Method::ChannelSum && k != 3) continue;  // defined for K = 3 only
+                                if (b == Backend::Cpu && p != Precision::Fp32) continue;  // the reference is double
+                                Cell c{m, levels, b, p, size, k, sensors, ""};
+                                c.skip = skip_reason(c, budget);
+                                out.push_back(c);
+                            }
 }
 
 auto order_key(const Cell& c) {
     const auto methods = all_method_variants();
     const auto method_index = std::find(methods.begin(), methods.end(), c.method) - methods.begin();
-    return std::make_tuple(c.size.pixels(), c.size.width, c.frames, c.sensors, method_index, c.levels, c.backend);
+    return std::make_tuple(c.size.pixels(), c.size.width, c.frames, c.sensors, method_index, c.levels, c.backend,
+                           c.precision);
 }
 
 }  // namespace
@@ -156,7 +163,8 @@ std::vector<Cell> build_matrix(const Options& o, double budget) {
     cells.erase(std::unique(cells.begin(), cells.end(),
                             [](const Cell& a, const Cell& b) { return order_key(a) == order_key(b); }),
                 cells.end());
-    if (cells.empty()) throw UsageError("no benchmark cell matches these options (channel-sum needs --frames 3)");
+    if (cells.empty())
+        throw UsageError("no benchmark cell matches these options (channel-sum needs --frames 3; fp16 is Vulkan only)");
     return cells;
 }
 

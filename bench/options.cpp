@@ -69,8 +69,8 @@ const std::map<std::string, Setter, std::less<>>& setters() {
         {"--backend", [](Options& o, auto opt, auto v) {
              add_list(o.backends, opt, v, [&](auto s) { return parse_backend(opt, s); });
          }},
-        {"--precision", [](Options&, auto opt, auto v) {
-             for (auto s : split_commas(opt, v)) parse_precision(opt, s);  // fp32 is the only value
+        {"--precision", [](Options& o, auto opt, auto v) {
+             add_list(o.precisions, opt, v, [&](auto s) { return parse_precision(opt, s); });
          }},
         {"--size", [](Options& o, auto opt, auto v) { add_list(o.sizes, opt, v, [&](auto s) { return parse_size(opt, s); }); }},
         {"--frames", [](Options& o, auto opt, auto v) {

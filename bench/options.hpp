@@ -23,6 +23,7 @@ struct Options {
     std::vector<int> frames;
     std::vector<int> sensors;
     std::vector<int> levels;
+    std::vector<Precision> precisions;
     std::string json_path;
     std::string plot_path;
     bool profile = false;

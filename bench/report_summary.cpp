@@ -5,11 +5,19 @@
 namespace vkfuse::bench {
 namespace {
 
+// fp16 storage has no tolerance to meet (SPEC.md): its error is reported.
+void print_fp16(std::FILE* out, const std::vector<CellResult>& results) {
+    for (const auto& r : results)
+        if (r.cell.precision == Precision::Fp16Storage && r.measured())
+            std::fprintf(out, "fp16 storage: %s: max|err| %.2e, mean|err| %.2e, metric rel err %.2e\n",
+                         r.cell.describe().c_str(), r.error.max_abs, r.error.mean_abs(), r.metric_error.worst());
+}
+
 void print_accuracy(std::FILE* out, const std::vector<CellResult>& results) {
     int measured = 0;
     const CellResult* worst = nullptr;
     for (const auto& r : results) {
-        if (r.cell.backend != Backend::Vulkan || !r.measured()) continue;
+        if (r.cell.backend != Backend::Vulkan || r.cell.precision != Precision::Fp32 || !r.measured()) continue;
         ++measured;
         if (!worst || r.error.max_abs > worst->error.max_abs) worst = &r;
         if (r.error.max_abs > kFusedTolerance || r.metric_error.worst() > kFusedTolerance)
@@ -40,7 +48,7 @@ void print_batching(std::FILE* out, const std::vector<CellResult>& results) {
             Cell as_one = many.cell;
             as_one.sensors = 1;
             if (many.cell.backend != Backend::Vulkan || many.cell.sensors == 1 || !many.measured() ||
-                !as_one.same_workload(one.cell))
+                many.cell.precision != one.cell.precision || !as_one.same_workload(one.cell))
                 continue;
             const double by_min = (many.cell.sensors / many.timing.min_ms) / (1.0 / one.timing.min_ms);
             char part[96];
@@ -58,6 +66,7 @@ void print_batching(std::FILE* out, const std::vector<CellResult>& results) {
 void print_summary(std::FILE* out, const std::vector<CellResult>& results) {
     std::fprintf(out, "\n");
     print_accuracy(out, results);
+    print_fp16(out, results);
     print_batching(out, results);
     if (std::any_of(results.begin(), results.end(), [](const CellResult& r) { return r.timing.capped; }))
         std::fprintf(out, "runs marked * were cut below --runs by --cell-seconds (slow cycles on a CPU).\n");

@@ -14,7 +14,7 @@ namespace {
 // axis; it is drawn at this floor and the legend says so.
 constexpr double kErrorFloor = 1e-10;
 
-enum class Marker { Vulkan, Cpu, Peer };
+enum class Marker { Vulkan, VulkanFp16, Cpu, Peer };
 
 struct Point {
     double ms;      // per sensor-cycle
@@ -50,13 +50,18 @@ std::string point_label(const Cell& c) {
     return short_size_name(c.size) + " K" + std::to_string(c.frames) + " S" + std::to_string(c.sensors);
 }
 
+Marker marker_of(const Cell& c) {
+    if (c.backend == Backend::Cpu) return Marker::Cpu;
+    return c.precision == Precision::Fp16Storage ? Marker::VulkanFp16 : Marker::Vulkan;
+}
+
 std::vector<Point> collect(const std::vector<CellResult>& results) {
     std::vector<Point> pts;
     for (std::size_t i = 0; i < results.size(); ++i) {
         const auto& r = results[i];
         if (r.measured())
             pts.push_back({r.timing.median_ms / r.cell.sensors, std::max(r.error.max_abs, kErrorFloor), label(r.cell.method),
-                           r.cell.backend == Backend::Vulkan ? Marker::Vulkan : Marker::Cpu, point_label(r.cell)});
+                           marker_of(r.cell), point_label(r.cell)});
         const bool first_of_workload = i == 0 || !results[i - 1].cell.same_workload(r.cell);
         if (first_of_workload && r.peer && r.peer->failure.empty())
             pts.push_back({r.peer->per_sensor.median_ms, std::max(r.peer->error.max_abs, kErrorFloor), label(r.cell.method),
@@ -85,6 +90,9 @@ std::string marker_svg(Marker m, double x, double y, const char* fill) {
     const std::string style = std::string(" fill=\"") + fill + "\" stroke=\"#000\" stroke-width=\"0.6\"/>\n";
     switch (m) {
         case Marker::Vulkan: return "<circle cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"5\"" + style;
+        case Marker::VulkanFp16:  // a diamond: the same device, half the storage
+            return "<polygon points=\"" + num(x) + "," + num(y - 6) + " " + num(x + 6) + "," + num(y) + " " + num(x) + "," +
+                   num(y + 6) + " " + num(x - 6) + "," + num(y) + "\"" + style;
         case Marker::Cpu:
             return "<rect x=\"" + num(x - 4.5) + "\" y=\"" + num(y - 4.5) + "\" width=\"9\" height=\"9\"" + style;
         case Marker::Peer: break;
@@ -148,7 +156,7 @@ std::string legend_svg(const Frame& f, const std::vector<Point>& pts) {
     }
     y += 10;
     const std::pair<Marker, const char*> kinds[] = {
-        {Marker::Vulkan, "vulkan fp32"}, {Marker::Cpu, "cpu reference (double)"}, {Marker::Peer, "python peer (float32)"}};
+        {Marker::Vulkan, "vulkan fp32"}, {Marker::VulkanFp16, "vulkan fp16 storage"}, {Marker::Cpu, "cpu reference (double)"}, {Marker::Peer, "python peer (float32)"}};
     for (const auto& [m, name] : kinds) {
         s += marker_svg(m, x + 6, y - 3, "#fff");
         s += text_svg(x + 18, y + 2, name);
