@@ -14,16 +14,17 @@ constexpr CommandSpec kSpec{
     "list the Vulkan devices and say which one --backend auto uses",
     "vkfuse info",
     "Lists every Vulkan device the loader reports (index, name, driver, type, API\n"
-    "version, and whether vkfuse can use it) and the device --backend auto picks.\n"
+    "version, whether vkfuse can use it and whether it has the 16-bit storage\n"
+    "that Precision::Fp16Storage needs) and the device --backend auto picks.\n"
     "Without a Vulkan loader or device it says so: the CPU reference path is used.",
     {},
     "vkfuse info",
 };
 
 void print_device(const DeviceInfo& d) {
-    std::printf("  [%d] %s\n      type %s, driver %s, Vulkan %s: %s%s\n", d.index, d.name.c_str(), d.type.c_str(),
+    std::printf("  [%d] %s\n      type %s, driver %s, Vulkan %s: %s%s%s\n", d.index, d.name.c_str(), d.type.c_str(),
                 d.driver.c_str(), d.api_version.c_str(), d.usable ? "usable" : "not usable: ",
-                d.usable ? "" : d.why_not.c_str());
+                d.usable ? "" : d.why_not.c_str(), d.usable && d.fp16_storage ? " (fp16 storage too)" : "");
 }
 
 // Opens the device exactly as --backend auto would, so the answer cannot drift
