@@ -14,6 +14,10 @@ bool Cell::same_workload(const Cell& o) const {
     return method == o.method && levels == o.levels && size == o.size && frames == o.frames && sensors == o.sensors;
 }
 
+std::string Cell::precision_name() const {
+    return backend == Backend::Cpu ? "fp64" : std::string(to_string(precision));
+}
+
 std::string Cell::describe() const {
     std::string out = label(method);
     if (levels > 0) out += " L" + std::to_string(levels);

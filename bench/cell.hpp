@@ -20,6 +20,8 @@ struct Cell {
     FusionSpec fusion() const;
     // Cells that differ only in backend share inputs, reference and peer.
     bool same_workload(const Cell& other) const;
+    // What the numbers are held in: "fp64" (the CPU reference), "fp32", "fp16".
+    std::string precision_name() const;
     // "wavelet/bior4.4 L3 QVGA K3 S1 vulkan", "... vulkan fp16"
     std::string describe() const;
 };

@@ -30,7 +30,8 @@ Filters (comma lists; each replaces that axis of the scope):
   --wavelet W       haar, db2, bior2.2, bior4.4 (alone it implies --method wavelet)
   --backend B       cpu (double-precision reference), vulkan
   --precision P     fp32, fp16 (float16 planes between kernels, float32 arithmetic;
-                    vulkan only, where the device has 16-bit storage)
+                    vulkan only, where the device has 16-bit storage). The cpu
+                    reference computes in double: "fp64" in reports, run with fp32
   --size WxH        e.g. 320x240, or qvga, vga, 1080p, 4k (4096x4096)
   --frames K        2..16 (channel-sum exists for K=3 only)
   --sensors S       1..4096

@@ -52,7 +52,7 @@ void add_identity(Members& o, const CellResult& r) {
     o.add("wavelet", text_if(wavelet, to_string(c.method.wavelet)));
     o.add("levels", c.levels > 0 ? std::optional<double>(c.levels) : std::nullopt);
     o.add("backend", Value(std::string(to_string(c.backend)))).add("device", Value(r.device));
-    o.add("precision", Value(std::string(to_string(c.precision))));
+    o.add("precision", Value(c.precision_name()));
     o.add("width", Value(c.size.width)).add("height", Value(c.size.height));
     o.add("frames", Value(c.frames)).add("sensors", Value(c.sensors));
     std::optional<std::string> skipped;

@@ -27,15 +27,15 @@ std::string peer_columns(const CellResult& r) {
 }  // namespace
 
 void print_table_header(std::FILE* out) {
-    std::fprintf(out, "%-22s %-6s %-6s %2s %3s %9s %9s %9s %5s %9s %8s %9s %9s %9s %6s %6s %10s %9s\n", "method", "backend",
-                 "size", "K", "S", "median_ms", "min_ms", "max_ms", "runs", "sensor/s", "Mpix/s", "max|err|", "mean|err|",
+    std::fprintf(out, "%-22s %-6s %-4s %-6s %2s %3s %9s %9s %9s %5s %9s %8s %9s %9s %9s %6s %6s %10s %9s\n", "method",
+                 "backend", "prec", "size", "K", "S", "median_ms", "min_ms", "max_ms", "runs", "sensor/s", "Mpix/s", "max|err|", "mean|err|",
                  "metric_re", ">1e-5", "bw%", "peer_ms", "peer/this");
 }
 
 void print_row(std::FILE* out, const CellResult& r) {
     const Cell& c = r.cell;
-    std::fprintf(out, "%-22s %-6s %-6s %2d %3d ", cell_name(c).c_str(), std::string(to_string(c.backend)).c_str(),
-                 short_size_name(c.size).c_str(), c.frames, c.sensors);
+    std::fprintf(out, "%-22s %-6s %-4s %-6s %2d %3d ", cell_name(c).c_str(), std::string(to_string(c.backend)).c_str(),
+                 c.precision_name().c_str(), short_size_name(c.size).c_str(), c.frames, c.sensors);
     if (!r.measured()) {
         std::fprintf(out, "%s\n", (c.skip.empty() ? "failed: " + r.failure : "skipped: " + c.skip).c_str());
         return;
