@@ -30,7 +30,7 @@ void lift_step(Planes coef, LineView v, uint plane, int line, int n, int s, floa
         // x + sign * (c0 a + c1 b) as one compensated sum rounded once (Dot2,
         // common.glsl): a plain-float step rounds three times, and symmetric
         // bior4.4's eight steps per level made a fed-back image drift 1.01e-5
-        // in 100 passes; compensated, 7e-6 (tests/stress/test_stress_feedback).
+        // in 100 passes; compensated, 8.1e-6 (tests/stress/test_stress_feedback).
         uint at = lift_slot(v, plane, line, q);
         Dot2 d = Dot2(float(coef.v[at]), 0.0);
         dot2_add(d, sign * c0, coef.v[lift_slot(v, plane, line, reflect101(q + o0, n))]);
