@@ -166,6 +166,13 @@ VkPipeline Context::Impl::pipeline(const std::string& shader, std::span<const st
     std::lock_guard lock(pipelines_mutex_);
     auto key = std::make_pair(shader, std::vector<std::uint32_t>(specialization.begin(), specialization.end()));
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
+    VkPipeline pipe = create_pipeline(shader, layout, specialization);
+    pipelines_.emplace(std::move(key), pipe);
+    return pipe;
+}
+
+VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
+                                          std::span<const std::uint32_t> specialization) {
     auto spirv = vk::shader_spirv(shader);
     VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     mci.codeSize = spirv.size_bytes();
@@ -183,12 +190,11 @@ VkPipeline Context::Impl::pipeline(const std::string& shader, std::span<const st
     VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
                               specialization.data()};
     if (!entries.empty()) pci.stage.pSpecializationInfo = &spec;
-    pci.layout = layout;
+    pci.layout = with_layout;
     VkPipeline pipe = VK_NULL_HANDLE;
     VkResult r = api->vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pci, nullptr, &pipe);
     api->vkDestroyShaderModule(device, module, nullptr);  // the pipeline keeps what it needs
     vk::check(r, ("vkCreateComputePipelines(" + shader + ")").c_str());
-    pipelines_.emplace(std::move(key), pipe);
     return pipe;
 }
 

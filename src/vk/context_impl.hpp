@@ -42,6 +42,10 @@ struct Context::Impl {
     // specialization words are the values of constant_id 0, 1, ... (32 bits
     // each): one pipeline per shader and distinct values.
     VkPipeline pipeline(const std::string& shader, std::span<const std::uint32_t> specialization = {});
+    // A new pipeline of an embedded shader with another layout, owned by the
+    // caller (device probes that bind descriptor sets).
+    VkPipeline create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
+                               std::span<const std::uint32_t> specialization = {});
 
     // First memory type with all `required` flags among those allowed by type_bits.
     std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
