@@ -17,6 +17,7 @@
 #include "report_table.hpp"
 #include "usage_error.hpp"
 #include "vk/copy_bandwidth.hpp"
+#include "vk/kernel_access.hpp"
 #include "vkfuse/error.hpp"
 
 namespace vkfuse::bench {
@@ -26,19 +27,29 @@ namespace {
 struct Environment {
     std::optional<Context> vulkan;
     std::string no_vulkan;  // why vulkan is empty
+    std::string no_access;  // why access is empty
     std::optional<vk::CopyBandwidth> copy;
+    std::optional<vk::KernelAccess> access;
     std::optional<PeerRunner> peers;
 };
 
-bool wants_vulkan(const std::vector<Cell>& cells) {
+bool wants_vulkan(const Options& o, const std::vector<Cell>& cells) {
+    if (o.probe) return true;
     for (const auto& c : cells)
         if (c.backend == Backend::Vulkan && c.skip.empty()) return true;
     return false;
 }
 
+// Large enough that a GPU's launch cost does not hide its memory speed, small
+// enough that lavapipe measures in a second or two (--quick: a fraction).
+std::uint64_t probe_bytes(const Options& o, const Context& vulkan) {
+    const std::uint64_t mib = vulkan.device().type == "cpu" ? 16 : 256;
+    return (o.scope == Scope::Quick ? mib / 4 : mib) << 20;
+}
+
 Environment discover(const Options& o, const std::vector<Cell>& cells) {
     Environment env;
-    if (wants_vulkan(cells)) {
+    if (wants_vulkan(o, cells)) {
         try {
             ContextOptions co;
             co.device_index = o.device;
@@ -50,9 +61,26 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
             env.no_vulkan = e.what();
             env.vulkan.reset();
         }
+        // A failed probe is reported; the cells still run and check themselves.
+        if (env.vulkan) try {
+                env.access = vk::measure_kernel_access(*env.vulkan, probe_bytes(o, *env.vulkan));
+            } catch (const Error& e) {
+                env.no_access = e.what();
+            }
     }
     if (o.peers) env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
     return env;
+}
+
+// The device's floor: what every kernel pays per access, per flop, per dispatch.
+void print_kernel_access(const vk::KernelAccess& a) {
+    std::printf("kernel access: %.3g ns per float copied via device addresses (vkfuse kernels), %.3g via bound "
+                "buffers, %.3g as bound vec4 (%llu floats, %s)\n",
+                a.address_ns, a.bound_ns, a.bound_vec4_ns, static_cast<unsigned long long>(a.floats),
+                a.device_timed ? "device timestamps" : "host clock");
+    std::printf("kernel compute: %.3g ns per shared-memory exchange (store, barrier, load, barrier), %.3g GFLOP/s "
+                "multiply-add, %.3g us per small dispatch\n",
+                a.shared_exchange_ns, a.fma_gflops, a.dispatch_us);
 }
 
 void print_environment(const Environment& env, const Options& o, double budget) {
@@ -64,6 +92,10 @@ void print_environment(const Environment& env, const Options& o, double budget) 
             std::printf("copy bandwidth: %.2f GB/s (%llu MiB buffer copy, %s)\n", env.copy->bytes_per_second() * 1e-9,
                         static_cast<unsigned long long>(env.copy->bytes >> 20),
                         env.copy->device_timed ? "device timestamps" : "host clock");
+        if (env.access)
+            print_kernel_access(*env.access);
+        else
+            std::printf("kernel access: probe failed (%s)\n", env.no_access.c_str());
     } else if (!env.no_vulkan.empty()) {
         std::printf("vulkan: not available (%s); vulkan cells are skipped\n", env.no_vulkan.c_str());
     }
@@ -105,6 +137,7 @@ CellResult measure(Environment& env, const Options& o, const Cell& c, const Inpu
         r.failure = e.what();
     }
     if (c.backend == Backend::Vulkan && env.copy) r.copy_bandwidth = env.copy->bytes_per_second();
+    if (c.backend == Backend::Vulkan && env.access) r.kernel_copy_ns = env.access->address_ns;
     r.load_average = load;
     return r;
 }
@@ -168,6 +201,11 @@ int run_bench(const Options& o) {
         return 0;
     }
     Environment env = discover(o, cells);
+    if (o.probe) {
+        if (!env.vulkan) throw Error(ErrorKind::Device, "--probe: no usable Vulkan device (" + env.no_vulkan + ")");
+        print_environment(env, o, budget);
+        return env.access ? 0 : 1;
+    }
     print_environment(env, o, budget);
     print_table_header(stdout);
     std::vector<CellResult> results;

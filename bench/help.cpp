@@ -44,9 +44,10 @@ Output:
                     throughput_cycles_s (sensor-cycles/s), mpixels_s, max_abs_err,
                     mean_abs_err, samples_over_1e-5, checked_sensors,
                     metric_rel_err{sharpness, contrast, background_diff}, kernel_ms,
-                    bytes_per_cycle, copy_bandwidth_gbs, bandwidth_fraction, peer,
-                    peer_failure, peer_median_ms, peer_ms_per_sensor, peer_runs,
-                    peer_max_abs_err, peer_mean_abs_err, peer_metric_rel_err,
+                    bytes_per_cycle, copy_bandwidth_gbs, bandwidth_fraction,
+                    kernel_copy_ns_per_float, peer, peer_failure, peer_median_ms,
+                    peer_ms_per_sensor, peer_runs, peer_max_abs_err,
+                    peer_mean_abs_err, peer_metric_rel_err,
                     peer_speedup (peer_median_ms / median_ms)
   --plot FILE.svg   log-log time per sensor-cycle against max abs error,
                     coloured by method, marked by backend and precision
@@ -62,6 +63,8 @@ Measurement:
   --no-peers        do not run the Python peers
   --python PATH     the peers' interpreter (default /usr/bin/python3, then python3)
   --list            print the cells (with estimated memory and skip reasons), run nothing
+  --probe           measure the Vulkan device only (copy bandwidth, kernel access
+                    costs), print it, run no cell
 
 How it measures:
   A cycle is what a sensor loop does: Plan::run on all S*K frames (upload,
@@ -73,6 +76,10 @@ How it measures:
   beyond 8 sensors the frames of sensors 0..7 repeat (the same bytes are still
   uploaded). bytes_per_cycle counts the S*K frames up and S fused images down;
   bandwidth_fraction relates it to a buffer copy measured at start.
+  Also at start, probe kernels measure what any kernel pays on the device: ns
+  per float copied through device addresses (how vkfuse kernels reach memory),
+  through descriptor-bound buffers and as vec4; a shared-memory exchange; the
+  multiply-add rate; one small dispatch. Each probe's output is checked.
   The peer (bench/peers/pipelines.py with /usr/bin/python3, else python3, needing
   numpy, pywt and cv2) times its own loop (>= 5 runs) on sensor 0's frames in
   float32; for S > 1 its time is S times that (Python fuses sensors in turn).

@@ -35,6 +35,7 @@ struct Options {
     int device = -1;             // Vulkan device index, -1: the best one
     double mem_limit_gib = 0;    // 0: 80% of the memory available at start
     bool list = false;           // print the cells and exit
+    bool probe = false;          // measure the device, print it, run no cell
     bool help = false;
 };
 

@@ -41,6 +41,7 @@ struct CellResult {
     std::vector<StageTime> stages;          // with --profile, Vulkan only
     std::optional<double> bytes_per_cycle;  // uploads + readback, Vulkan only
     std::optional<double> copy_bandwidth;   // bytes/s of a device buffer copy, this run
+    std::optional<double> kernel_copy_ns;   // ns per float a kernel copies via device addresses, this run
     std::optional<PeerResult> peer;
 
     bool measured() const { return cell.skip.empty() && failure.empty(); }

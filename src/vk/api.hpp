@@ -72,7 +72,14 @@ namespace vkfuse::vk {
     X(vkResetFences)                      \
     X(vkWaitForFences)                    \
     X(vkQueueSubmit)                      \
-    X(vkDeviceWaitIdle)
+    X(vkDeviceWaitIdle)                   \
+    X(vkCreateDescriptorSetLayout)        \
+    X(vkDestroyDescriptorSetLayout)       \
+    X(vkCreateDescriptorPool)             \
+    X(vkDestroyDescriptorPool)            \
+    X(vkAllocateDescriptorSets)           \
+    X(vkUpdateDescriptorSets)             \
+    X(vkCmdBindDescriptorSets)
 
 #define VKFUSE_DECLARE(name) PFN_##name name = nullptr;
 

@@ -1,0 +1,32 @@
+// What a compute kernel pays on this device to reach memory and to compute,
+// measured with small probe kernels: the floor under every vkfuse kernel's run
+// time. vkfuse's kernels reach their buffers through device addresses; the
+// descriptor-bound and vec4 figures show what the other access paths cost on
+// the same device, and the shared-memory figure what a tiled kernel would pay
+// to exchange halos. On a GPU these are tiny; on a CPU implementation such as
+// lavapipe they bound how fast any kernel can be.
+#pragma once
+#include <cstdint>
+
+#include "vkfuse/context.hpp"
+
+namespace vkfuse::vk {
+
+struct KernelAccess {
+    std::uint64_t floats = 0;       // floats each copy kernel copies
+    double address_ns = 0;          // per float copied (one load + one store), device addresses
+    double bound_ns = 0;            // the same through descriptor-bound storage buffers
+    double bound_vec4_ns = 0;       // the same, four floats per load and store
+    double shared_exchange_ns = 0;  // per invocation and round: store, barrier, load, barrier
+    double fma_gflops = 0;          // float32 multiply-add rate, 2 flops each
+    double dispatch_us = 0;         // one single-group dispatch plus a barrier, as a plan records them
+    bool device_timed = false;      // timestamp queries (true) or host clock around submit + wait
+};
+
+// Runs each probe once to warm up and `repeats` times (median) on buffers of
+// `bytes`, checks every probe's output against the host (a wrong result
+// throws Error(Device): a broken probe must not report a speed), and returns
+// the costs. Throws Error(InvalidArgument) for bytes < 4 KiB or repeats < 1.
+KernelAccess measure_kernel_access(Context& context, std::uint64_t bytes = std::uint64_t(64) << 20, int repeats = 5);
+
+}  // namespace vkfuse::vk
