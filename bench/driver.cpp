@@ -64,11 +64,11 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
         // A failed probe is reported; the cells still run and check themselves.
         if (env.vulkan) try {
                 env.access = vk::measure_kernel_access(*env.vulkan, probe_bytes(o, *env.vulkan));
-            } catch (const Error& e) {
+            } catch (const std::exception& e) {
                 env.no_access = e.what();
             }
     }
-    if (o.peers) env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
+    if (o.peers && !o.probe) env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
     return env;
 }
 
@@ -83,7 +83,8 @@ void print_kernel_access(const vk::KernelAccess& a) {
                 a.shared_exchange_ns, a.fma_gflops, a.dispatch_us);
 }
 
-void print_environment(const Environment& env, const Options& o, double budget) {
+// The Vulkan device and what it measured at start (all of --probe's output).
+void print_device(const Environment& env) {
     if (env.vulkan) {
         const auto& d = env.vulkan->device();
         std::printf("vulkan: %s (%s, %s, Vulkan %s)\n", d.name.c_str(), d.type.c_str(), d.driver.c_str(),
@@ -99,6 +100,10 @@ void print_environment(const Environment& env, const Options& o, double budget) 
     } else if (!env.no_vulkan.empty()) {
         std::printf("vulkan: not available (%s); vulkan cells are skipped\n", env.no_vulkan.c_str());
     }
+}
+
+void print_environment(const Environment& env, const Options& o, double budget) {
+    print_device(env);
     if (!o.peers)
         std::printf("peers: off (--no-peers)\n");
     else if (env.peers->available())
@@ -203,7 +208,7 @@ int run_bench(const Options& o) {
     Environment env = discover(o, cells);
     if (o.probe) {
         if (!env.vulkan) throw Error(ErrorKind::Device, "--probe: no usable Vulkan device (" + env.no_vulkan + ")");
-        print_environment(env, o, budget);
+        print_device(env);
         return env.access ? 0 : 1;
     }
     print_environment(env, o, budget);

@@ -64,7 +64,7 @@ Measurement:
   --python PATH     the peers' interpreter (default /usr/bin/python3, then python3)
   --list            print the cells (with estimated memory and skip reasons), run nothing
   --probe           measure the Vulkan device only (copy bandwidth, kernel access
-                    costs), print it, run no cell
+                    costs), print the device lines, run no cell and no peer
 
 How it measures:
   A cycle is what a sensor loop does: Plan::run on all S*K frames (upload,
@@ -76,10 +76,11 @@ How it measures:
   beyond 8 sensors the frames of sensors 0..7 repeat (the same bytes are still
   uploaded). bytes_per_cycle counts the S*K frames up and S fused images down;
   bandwidth_fraction relates it to a buffer copy measured at start.
-  Also at start, probe kernels measure what any kernel pays on the device: ns
-  per float copied through device addresses (how vkfuse kernels reach memory),
-  through descriptor-bound buffers and as vec4; a shared-memory exchange; the
-  multiply-add rate; one small dispatch. Each probe's output is checked.
+  Also at start of a run with Vulkan cells, probe kernels measure what any
+  kernel pays on the device: ns per float copied through device addresses (how
+  vkfuse kernels reach memory), through descriptor-bound buffers and as vec4; a
+  shared-memory exchange; the multiply-add rate; one small dispatch. Each
+  probe's output is checked.
   The peer (bench/peers/pipelines.py with /usr/bin/python3, else python3, needing
   numpy, pywt and cv2) times its own loop (>= 5 runs) on sensor 0's frames in
   float32; for S > 1 its time is S times that (Python fuses sensors in turn).

@@ -56,6 +56,7 @@ namespace vkfuse::vk {
     X(vkFreeCommandBuffers)               \
     X(vkBeginCommandBuffer)               \
     X(vkEndCommandBuffer)                 \
+    X(vkResetCommandBuffer)               \
     X(vkCmdBindPipeline)                  \
     X(vkCmdPushConstants)                 \
     X(vkCmdDispatch)                      \

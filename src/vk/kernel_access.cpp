@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -55,6 +54,7 @@ public:
         api.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
         api.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
         const std::uint32_t groups = (count + kGroup - 1) / kGroup;
+        if (groups == 0) return;
         const std::uint32_t gx = std::min<std::uint32_t>(groups, 32768);
         api.vkCmdDispatch(cmd, gx, (groups + gx - 1) / gx, 1);
     }
@@ -126,25 +126,27 @@ private:
     }
 };
 
-void shader_to_transfer(const Api& api, VkCommandBuffer cmd) {
+// A global memory barrier. A barrier's first scope is every command submitted
+// earlier to the queue, so one recorded here also orders earlier submissions.
+void barrier(const Api& api, VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
+             VkPipelineStageFlags dst, VkAccessFlags dst_access) {
     VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    mb.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-    api.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0,
-                             nullptr, 0, nullptr);
+    mb.srcAccessMask = src_access;
+    mb.dstAccessMask = dst_access;
+    api.vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
 }
 
-void compute_to_compute(const Api& api, VkCommandBuffer cmd) {
-    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    mb.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-    api.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
-                             &mb, 0, nullptr, 0, nullptr);
-}
+constexpr std::uint32_t kNanBits = 0x7FC00000u;  // fills dst before each probe: never within tolerance
 
-// Source values in [0, 0.5): exact in float, doubling them stays exact, and
-// probe_fma's recurrence converges for them.
-float source_value(std::uint64_t i) { return float((i * 2654435761u) % 1000u) / 2048.0f; }
+// Source values: k / 2048 for k in [0, 999) and, one element in a thousand,
+// exactly 1. All are exact in float and stay exact when doubled. probe_fma's
+// recurrence converges for the small values and counts its rounds at 1,
+// where it gives exactly 0.5 per round: a probe that ran fewer rounds than
+// it reports fails its check.
+float source_value(std::uint64_t i) {
+    const auto k = std::uint32_t((i * 2654435761u) % 1000u);
+    return k == 999u ? 1.0f : float(k) / 2048.0f;
+}
 
 // What each probe must have written at element i (of floats).
 using Expectation = float (*)(std::uint64_t i);
@@ -171,13 +173,22 @@ public:
         job_.record([&](VkCommandBuffer cmd) {
             VkBufferCopy region{0, 0, bytes()};
             ctx_.api->vkCmdCopyBuffer(cmd, upload_.handle(), src_.handle(), 1, &region);
+            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
         });
         job_.run();
     }
 
     // Median seconds of `shader` over `count` elements; its output is then
-    // checked against `expect` for every float.
+    // checked against `expect` for every float. dst starts as NaN, so a probe
+    // that writes nothing cannot pass on what the previous probe left there.
     double time_checked(const std::string& shader, std::uint32_t count, Expectation expect) {
+        job_.record([&](VkCommandBuffer cmd) {
+            ctx_.api->vkCmdFillBuffer(cmd, dst_.handle(), 0, VK_WHOLE_SIZE, kNanBits);
+            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+        });
+        job_.run();
         job_.record([&](VkCommandBuffer cmd) { kernels_.dispatch(cmd, shader, count); });
         const double seconds = job_.median_of(repeats_);
         check_output(shader, expect);
@@ -188,7 +199,9 @@ public:
     double time_dispatch() {
         job_.record([&](VkCommandBuffer cmd) {
             for (std::uint32_t d = 0; d < kDispatches; ++d) {
-                if (d > 0) compute_to_compute(*ctx_.api, cmd);
+                if (d > 0)
+                    barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
                 kernels_.dispatch(cmd, "probe_copy_bound", kGroup);
             }
         });
@@ -209,9 +222,12 @@ private:
 
     void check_output(const std::string& shader, Expectation expect) {
         job_.record([&](VkCommandBuffer cmd) {
-            shader_to_transfer(*ctx_.api, cmd);
+            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
             VkBufferCopy region{0, 0, bytes()};
             ctx_.api->vkCmdCopyBuffer(cmd, dst_.handle(), readback_.handle(), 1, &region);
+            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         });
         job_.run();
         const auto* out = static_cast<const float*>(readback_.mapped());
@@ -222,7 +238,6 @@ private:
                                                    std::to_string(out[i]) + " at element " + std::to_string(i) +
                                                    ", expected " + std::to_string(want));
         }
-        std::memset(readback_.mapped(), 0, bytes());  // the next probe must write its own result
     }
 };
 
@@ -232,10 +247,11 @@ KernelAccess measure_kernel_access(Context& context, std::uint64_t bytes, int re
     if (bytes < 4096 || repeats < 1)
         throw Error(ErrorKind::InvalidArgument, "kernel access probe: bytes must be >= 4096 and repeats >= 1");
     // Whole vec4 groups, so every probe covers every float and probe_shared's
-    // groups are complete; at most 2^30 floats, far within 32-bit indices.
+    // groups are complete; no more than one descriptor may bind
+    // (maxStorageBufferRange: 128 MiB on lavapipe, at most 4 GiB - 1 anywhere).
     const std::uint64_t per_step = std::uint64_t(4) * kGroup;
-    const auto floats = std::uint32_t(std::min<std::uint64_t>(bytes / sizeof(float), std::uint64_t(1) << 30) /
-                                      per_step * per_step);
+    const std::uint64_t range = context.impl().properties.limits.maxStorageBufferRange;
+    const auto floats = std::uint32_t(std::min(bytes, range) / sizeof(float) / per_step * per_step);
     Probe probe(context.impl(), floats, repeats);
     KernelAccess r;
     r.floats = floats;

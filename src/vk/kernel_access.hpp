@@ -26,7 +26,8 @@ struct KernelAccess {
 // Runs each probe once to warm up and `repeats` times (median) on buffers of
 // `bytes`, checks every probe's output against the host (a wrong result
 // throws Error(Device): a broken probe must not report a speed), and returns
-// the costs. Throws Error(InvalidArgument) for bytes < 4 KiB or repeats < 1.
+// the costs. `bytes` beyond the device's maxStorageBufferRange is capped to
+// it. Throws Error(InvalidArgument) for bytes < 4 KiB or repeats < 1.
 KernelAccess measure_kernel_access(Context& context, std::uint64_t bytes = std::uint64_t(64) << 20, int repeats = 5);
 
 }  // namespace vkfuse::vk

@@ -55,9 +55,14 @@ void TimedCommands::record(const std::function<void(VkCommandBuffer)>& body) {
         api.vkCmdResetQueryPool(cmd_, queries_, 0, 2);
         api.vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
     }
-    body(cmd_);
-    if (queries_) api.vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
-    check(api.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+    try {
+        body(cmd_);
+        if (queries_) api.vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+        check(api.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+    } catch (...) {
+        api.vkResetCommandBuffer(cmd_, 0);  // not left recording: the next record() or run() stays valid
+        throw;
+    }
 }
 
 double TimedCommands::run() {
