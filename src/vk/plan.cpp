@@ -1,7 +1,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <mutex>
 
 #include "vk/plan_impl.hpp"
 #include "vkfuse/error.hpp"
@@ -44,43 +43,23 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context
     const std::size_t frame_bytes = std::size_t(cfg.height) * cfg.width * cfg.channels * pixel_bytes(cfg.input);
     const std::size_t plane_floats = std::size_t(cfg.height) * cfg.width;
     const std::size_t sensor_floats = plane_floats * cfg.channels;
-    try {
-        auto& api = *ctx.api;
-        upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
-        if (cfg.background_diff)
-            background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
-        const std::size_t fused_bytes = cfg.want_fused ? sensor_floats * cfg.sensors * 4 : 0;
-        totals_offset = (fused_bytes + 255) / 256 * 256;
-        readback = vk::Buffer(ctx, totals_offset + std::size_t(cfg.sensors) * 8 * 4, vk::MemoryUse::Readback);
-        VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pci.queueFamilyIndex = ctx.queue_family;
-        vk::check(api.vkCreateCommandPool(ctx.device, &pci, nullptr, &pool), "vkCreateCommandPool");
-        VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        cai.commandPool = pool;
-        cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        cai.commandBufferCount = 1;
-        vk::check(api.vkAllocateCommandBuffers(ctx.device, &cai, &cmd), "vkAllocateCommandBuffers");
-        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        vk::check(api.vkCreateFence(ctx.device, &fci, nullptr, &fence), "vkCreateFence");
-        if (cfg.profile) {
-            if (!ctx.timestamps) throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
-            VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-            qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
-            qci.queryCount = vk::Recorder::kMaxTimestamps;
-            vk::check(api.vkCreateQueryPool(ctx.device, &qci, nullptr, &queries), "vkCreateQueryPool");
-        }
-        record();
-    } catch (...) {
-        release();
-        throw;
-    }
+    upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
+    if (cfg.background_diff) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
+    const std::size_t fused_bytes = cfg.want_fused ? sensor_floats * cfg.sensors * 4 : 0;
+    totals_offset = (fused_bytes + 255) / 256 * 256;
+    readback = vk::Buffer(ctx, totals_offset + std::size_t(cfg.sensors) * 8 * 4, vk::MemoryUse::Readback);
+    if (cfg.profile && !ctx.timestamps)
+        throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
+    // Should anything here throw, the members built so far release themselves.
+    slot.emplace(ctx, cfg.profile ? vk::Recorder::kMaxTimestamps : 0);
+    record();
     background_set.assign(std::size_t(cfg.sensors), false);
     fused.resize(std::size_t(cfg.sensors));
     fused_fresh.assign(std::size_t(cfg.sensors), false);
 }
 
 void Plan::Impl::record() {
-    vk::Recorder rec(ctx, cmd, queries, kernel_variant(cfg.precision));
+    vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision));
     vk::GraphBuilder g{ctx, cfg, rec, buffers};
     const std::uint32_t w = std::uint32_t(cfg.width), h = std::uint32_t(cfg.height);
     VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * w * h);
@@ -122,37 +101,10 @@ void Plan::Impl::record() {
 }
 
 void Plan::Impl::submit_and_wait() {
-    auto& api = *ctx.api;
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    vk::check(api.vkResetFences(ctx.device, 1, &fence), "vkResetFences");
-    {
-        std::lock_guard lock(ctx.queue_mutex);  // plans of one context may run on several threads
-        vk::check(api.vkQueueSubmit(ctx.queue, 1, &si, fence), "vkQueueSubmit");
-    }
+    slot->submit();
     ++submits;
-    in_flight = true;
-    vk::check(api.vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()),
-              "vkWaitForFences");
-    in_flight = false;
+    slot->wait();
 }
-
-void Plan::Impl::release() {
-    if (!ctx.device) return;
-    auto& api = *ctx.api;
-    // Only a submit whose wait failed (device lost) can still be pending.
-    if (in_flight) api.vkDeviceWaitIdle(ctx.device);
-    if (fence) api.vkDestroyFence(ctx.device, fence, nullptr);
-    if (queries) api.vkDestroyQueryPool(ctx.device, queries, nullptr);
-    if (pool) api.vkDestroyCommandPool(ctx.device, pool, nullptr);  // frees cmd
-    fence = VK_NULL_HANDLE;
-    queries = VK_NULL_HANDLE;
-    pool = VK_NULL_HANDLE;
-    cmd = VK_NULL_HANDLE;
-}
-
-Plan::Impl::~Impl() { release(); }
 
 namespace {
 
@@ -273,10 +225,7 @@ std::vector<KernelTime> Plan::profile() const {
     if (!im.cfg.profile) throw Error(ErrorKind::InvalidArgument, "plan: created without profile");
     if (!im.has_run) return {};
     const std::uint32_t n = std::uint32_t(im.stage_names.size()) + 1;
-    std::vector<std::uint64_t> ticks(n);
-    vk::check(im.ctx.api->vkGetQueryPoolResults(im.ctx.device, im.queries, 0, n, n * sizeof(std::uint64_t), ticks.data(),
-                                                 sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-              "vkGetQueryPoolResults");
+    const std::vector<std::uint64_t> ticks = im.slot->timestamps(n);
     std::vector<KernelTime> out;
     const double ns_per_tick = im.ctx.properties.limits.timestampPeriod;
     for (std::uint32_t i = 0; i + 1 < n; ++i)

@@ -1,8 +1,10 @@
 // Plan::Impl and the pieces the per-method graph builders share.
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "vk/buffer.hpp"
+#include "vk/command_slot.hpp"
 #include "vk/recorder.hpp"
 #include "vkfuse/plan.hpp"
 
@@ -62,29 +64,22 @@ struct Plan::Impl {
     vk::Buffer background;  // planar float backgrounds, host-written by set_background
     vk::Buffer readback;    // fused HWC images, then metric totals
     std::vector<vk::Buffer> buffers;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkFence fence = VK_NULL_HANDLE;
-    VkQueryPool queries = VK_NULL_HANDLE;
+    // After the buffers, so it is released (and a pending submit waited out) first.
+    std::optional<vk::CommandSlot> slot;
     std::vector<std::string> stage_names;
     std::size_t totals_offset = 0;  // bytes into readback
     std::vector<bool> background_set;
     bool has_run = false;
-    bool in_flight = false;  // submitted and not yet waited for
     std::uint64_t submits = 0;
     std::vector<Image> fused;  // filled lazily from readback after a run
     std::vector<bool> fused_fresh;
 
     Impl(Context::Impl& context, const PlanConfig& config);
-    ~Impl();
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
     void record();
     void submit_and_wait();
-
-private:
-    void release();
 };
 
 }  // namespace vkfuse

@@ -5,16 +5,13 @@
 #pragma once
 #include <functional>
 
-#include "vk/context_impl.hpp"
+#include "vk/command_slot.hpp"
 
 namespace vkfuse::vk {
 
 class TimedCommands {
 public:
     explicit TimedCommands(Context::Impl& ctx);
-    ~TimedCommands();
-    TimedCommands(const TimedCommands&) = delete;
-    TimedCommands& operator=(const TimedCommands&) = delete;
 
     // Replaces the recorded work: body(cmd) between two timestamps.
     void record(const std::function<void(VkCommandBuffer)>& body);
@@ -22,16 +19,11 @@ public:
     double run();
     // The median seconds of `repeats` runs after one warm-up run.
     double median_of(int repeats);
-    bool device_timed() const { return queries_ != VK_NULL_HANDLE; }
+    bool device_timed() const { return slot_.queries() != VK_NULL_HANDLE; }
 
 private:
     Context::Impl& ctx_;
-    VkCommandPool pool_ = VK_NULL_HANDLE;
-    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
-    VkQueryPool queries_ = VK_NULL_HANDLE;
-
-    void release();
+    CommandSlot slot_;
 };
 
 }  // namespace vkfuse::vk
