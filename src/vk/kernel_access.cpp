@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "vk/buffer.hpp"
+#include "vk/recorder.hpp"
 #include "vk/timed_commands.hpp"
 #include "vkfuse/error.hpp"
 
@@ -126,16 +127,6 @@ private:
     }
 };
 
-// A global memory barrier. A barrier's first scope is every command submitted
-// earlier to the queue, so one recorded here also orders earlier submissions.
-void barrier(const Api& api, VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
-             VkPipelineStageFlags dst, VkAccessFlags dst_access) {
-    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = src_access;
-    mb.dstAccessMask = dst_access;
-    api.vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
-}
-
 constexpr std::uint32_t kNanBits = 0x7FC00000u;  // fills dst before each probe: never within tolerance
 
 // Source values: k / 2048 for k in [0, 999) and, one element in a thousand,
@@ -173,7 +164,7 @@ public:
         job_.record([&](VkCommandBuffer cmd) {
             VkBufferCopy region{0, 0, bytes()};
             ctx_.api->vkCmdCopyBuffer(cmd, upload_.handle(), src_.handle(), 1, &region);
-            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            memory_barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
         });
         job_.run();
@@ -185,7 +176,7 @@ public:
     double time_checked(const std::string& shader, std::uint32_t count, Expectation expect) {
         job_.record([&](VkCommandBuffer cmd) {
             ctx_.api->vkCmdFillBuffer(cmd, dst_.handle(), 0, VK_WHOLE_SIZE, kNanBits);
-            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            memory_barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
         });
         job_.run();
@@ -200,7 +191,7 @@ public:
         job_.record([&](VkCommandBuffer cmd) {
             for (std::uint32_t d = 0; d < kDispatches; ++d) {
                 if (d > 0)
-                    barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    memory_barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
                 kernels_.dispatch(cmd, "probe_copy_bound", kGroup);
             }
@@ -222,11 +213,11 @@ private:
 
     void check_output(const std::string& shader, Expectation expect) {
         job_.record([&](VkCommandBuffer cmd) {
-            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+            memory_barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
             VkBufferCopy region{0, 0, bytes()};
             ctx_.api->vkCmdCopyBuffer(cmd, dst_.handle(), readback_.handle(), 1, &region);
-            barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            memory_barrier(*ctx_.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         });
         job_.run();

@@ -26,12 +26,17 @@ Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries,
             VK_ACCESS_SHADER_READ_BIT);
 }
 
-void Recorder::barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
-                       VkAccessFlags dst_access) {
+void memory_barrier(const Api& api, VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
+                    VkPipelineStageFlags dst, VkAccessFlags dst_access) {
     VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     mb.srcAccessMask = src_access;
     mb.dstAccessMask = dst_access;
-    ctx_.api->vkCmdPipelineBarrier(cmd_, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
+    api.vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
+}
+
+void Recorder::barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
+                       VkAccessFlags dst_access) {
+    memory_barrier(*ctx_.api, cmd_, src, src_access, dst, dst_access);
 }
 
 void Recorder::dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,

@@ -40,6 +40,12 @@ private:
                  VkAccessFlags dst_access);
 };
 
+// A global memory barrier from (src, src_access) to (dst, dst_access). Its
+// first scope is every command submitted earlier to the queue, so one
+// recorded in a later submission also orders the earlier ones.
+void memory_barrier(const Api& api, VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
+                    VkPipelineStageFlags dst, VkAccessFlags dst_access);
+
 // Dispatch group count covering n items with groups of size per_group.
 inline std::uint32_t groups(std::uint64_t n, std::uint32_t per_group) {
     return std::uint32_t((n + per_group - 1) / per_group);
