@@ -107,11 +107,15 @@ TEST(CliRun, InterruptFinishesTheCycleAndFlushes) {
     posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
     ASSERT_EQ(posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ), 0);
     posix_spawn_file_actions_destroy(&actions);
-    // Wait until it has fused a few cycles, then interrupt.
-    for (int i = 0;
-         i < 600 && (!fs::exists(out + "/metrics.jsonl") || lines_of(read_bytes(out + "/metrics.jsonl")).size() < 2);
-         ++i)
-        usleep(100000);
+    // Wait until it has fused a few cycles (in the staging directory beside
+    // --out, where a run writes until it ends), then interrupt.
+    auto staged_lines = [&] {
+        for (const auto& e : fs::directory_iterator(tmp.file("")))
+            if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0 && fs::exists(e.path() / "metrics.jsonl"))
+                return lines_of(read_bytes((e.path() / "metrics.jsonl").string())).size();
+        return std::size_t(0);
+    };
+    for (int i = 0; i < 600 && staged_lines() < 2; ++i) usleep(100000);
     kill(pid, SIGINT);
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);

@@ -108,10 +108,10 @@ TEST(DatasetWriter, RefusesAnUsedDirectoryAndOddNames) {
     expect_error([&] { DatasetWriter(tmp.file(""), "test"); }, tmp.file(""), ErrorKind::Io, "not empty");
     DatasetWriter w(tmp.file("new"), "test");
     expect_error([&] { w.add_sensor(small_sensor("a/b")); }, "serial \"a/b\"", ErrorKind::InvalidArgument,
-                 "directory name");
+                 "file name");
     const int s = w.add_sensor(small_sensor("A"));
     expect_error([&] { w.add_frame(s, "..", false, pattern_frame(0, 0), kWhite); }, "object \"..\"",
-                 ErrorKind::InvalidArgument, "directory name");
+                 ErrorKind::InvalidArgument, "file name");
 }
 
 // Each malformed manifest: a Format error naming the manifest, the place and the problem.

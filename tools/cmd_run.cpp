@@ -1,6 +1,9 @@
 // vkfuse run: sensors cycling through an LED sequence, fused every cycle.
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 
 #include "backend.hpp"
@@ -11,6 +14,7 @@
 #include "run_output.hpp"
 #include "run_sensors.hpp"
 #include "run_stats.hpp"
+#include "staged_directory.hpp"
 #include "stop_signal.hpp"
 #include "vkfuse/error.hpp"
 
@@ -36,7 +40,8 @@ constexpr OptionSpec kOptions[] = {
     {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},
     {"--replay", "", "DIR", "play a recorded dataset instead of simulating (vkfuse sim, vkfuse run --record)"},
     {"--record", "", "DIR", "record the frames fused (and the background frames) as a dataset (new directory)"},
-    {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json"},
+    {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json (a new directory)"},
+    {"--replace", "", "", "let --out name a previous run's directory: replaced whole once this run succeeds"},
 };
 
 constexpr CommandSpec kSpec{
@@ -49,7 +54,9 @@ constexpr CommandSpec kSpec{
     "GPU submit. Without a real sensor it simulates DIGITs pressing --object\n"
     "(nothing, coin, coin-heads, coin-tails, lego, ball, screw, nut, velcro, file,\n"
     "text). A live line on stderr shows fused fps and per-stage latency; Ctrl-C\n"
-    "finishes the cycle in hand and flushes the files. Prints a JSON summary.",
+    "or SIGTERM finishes the cycle in hand and writes the files. Prints a JSON\n"
+    "summary. --out and --record are written beside their names and appear whole\n"
+    "when the run succeeds; a failed run leaves no trace and changes no file.",
     kOptions,
     "vkfuse run --sensors 4 --cycles 120 --virtual-clock --out out",
 };
@@ -58,13 +65,33 @@ struct Session {
     RunOptions options;
     std::shared_ptr<const Dataset> dataset;  // with --replay
     RunSensors sensors;
+    // Declared before what writes into them: destroyed (removed unless
+    // published) after the writers have closed their files.
+    std::unique_ptr<StagedDirectory> out_dir, record_dir;
     std::unique_ptr<DatasetWriter> recorder;
     std::unique_ptr<RunOutput> output;
 };
 
+// The target directories are checked (and their staging directories made)
+// before anything else happens, so a run that cannot write fails at once.
+void stage_outputs(Session& s, const Args& args) {
+    const RunOptions& o = s.options;
+    if (args.has("--replace") && !o.out) throw Error(ErrorKind::InvalidArgument, "--replace: needs --out");
+    if (o.out)
+        s.out_dir = std::make_unique<StagedDirectory>(
+            *o.out, StagedDirectory::Policy{"--out", args.has("--replace"), is_run_output_entry, "--replace"});
+    if (o.record) {
+        if (o.out && std::filesystem::path(*o.out).lexically_normal() ==
+                         std::filesystem::path(*o.record).lexically_normal())
+            throw Error(ErrorKind::InvalidArgument, "--record " + *o.record + ": the same directory as --out");
+        s.record_dir = std::make_unique<StagedDirectory>(*o.record, StagedDirectory::Policy{"--record", false, nullptr, ""});
+    }
+}
+
 Session prepare(const Args& args) {
     Session s;
     s.options = parse_run_options(args);
+    stage_outputs(s, args);
     if (s.options.replay) {
         s.dataset = std::make_shared<const Dataset>(read_dataset(*s.options.replay));
         adopt_recording(s.options, args, *s.dataset);
@@ -102,14 +129,15 @@ RigConfig rig_config(Session& s) {
     return cfg;
 }
 
-// Output directories are made only now, after every check has passed.
+// Files are opened only now, after every check has passed, in the staging
+// directories.
 void open_outputs(Session& s) {
     const RunOptions& o = s.options;
-    if (o.out)
-        s.output = std::make_unique<RunOutput>(*o.out, o.object,
+    if (s.out_dir)
+        s.output = std::make_unique<RunOutput>(s.out_dir->path(), o.object,
                                                static_slot(o.sequence, s.sensors.rig.front().sensor->info().leds));
-    if (!o.record) return;
-    s.recorder = std::make_unique<DatasetWriter>(*o.record, "vkfuse run");
+    if (!s.record_dir) return;
+    s.recorder = std::make_unique<DatasetWriter>(s.record_dir->path(), "vkfuse run");
     for (const RigSensor& r : s.sensors.rig) s.recorder->add_sensor(r.sensor->info());
     s.recorder->set_run({s.options.sequence, s.options.fusion, s.options.background_frames});
 }
@@ -131,7 +159,10 @@ std::optional<int> cycle_target(const Session& s) {
 
 bool more_to_do(const Session& s, const Rig& rig, const RunStats& stats, const StopSignal& stop) {
     const std::optional<int> target = cycle_target(s);
-    if (stop.requested() || rig.all_failed()) return false;
+    if (stop.requested()) return false;
+    // With every sensor failed, one cycle is still taken when none was yet:
+    // it carries the sensors' errors, which end the run with one line.
+    if (rig.all_failed()) return stats.cycles() == 0;
     if (target && stats.cycles() >= std::uint64_t(*target)) return false;
     return !(s.options.duration_s && stats.sensor_elapsed_s() >= *s.options.duration_s);
 }
@@ -145,25 +176,37 @@ RunStats cycle_loop(Session& s, Rig& rig, const StopSignal& stop) {
         if (s.output) s.output->write(cycle);
         if (s.recorder) record_cycle(*s.recorder, cycle, s.options);
         stats.add(cycle, std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count());
+        if (stats.fused() == 0 && rig.all_failed()) break;  // the run fails with the sensors' error alone
         progress.status(stats.progress_line(cycle_target(s)));
     }
     progress.finish();
     return stats;
 }
 
+void print_checked(const std::string& text) {
+    const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size();
+    if (std::fflush(stdout) != 0 || !ok || std::ferror(stdout))
+        throw Error(ErrorKind::Io, std::string("stdout: write failed: ") + std::strerror(errno));
+}
+
 int run(const Args& args) {
+    // First, so a signal at any point ends the run the orderly way.
+    StopSignal stop;
     Session s = prepare(args);
     std::optional<Context> context = open_backend(s.options.backend);
     Rig rig(context ? &*context : nullptr, rig_config(s), s.sensors.rig);
     open_outputs(s);
-    StopSignal stop;
     rig.start();
     const RunStats stats = cycle_loop(s, rig, stop);
     const std::string summary = stats.summary_json(rig);
+    if (stats.fused() == 0 && !stats.errors().empty()) throw Error(ErrorKind::Device, *stats.errors().begin());
     if (s.recorder) s.recorder->finish();
     if (s.output) s.output->finish(summary);
-    std::printf("%s\n", summary.c_str());
-    if (stats.fused() == 0 && !stats.errors().empty()) throw Error(ErrorKind::Device, *stats.errors().begin());
+    // Without --out the summary on stdout is the only result: a failed write
+    // (a full disk, a closed pipe) fails the run like any other lost output.
+    print_checked(summary + "\n");
+    if (s.record_dir) s.record_dir->publish();
+    if (s.out_dir) s.out_dir->publish();
     return 0;
 }
 

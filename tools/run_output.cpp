@@ -1,8 +1,15 @@
 #include "run_output.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 
+#include "io/path_component.hpp"
 #include "json.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/io.hpp"
@@ -12,10 +19,34 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr const char* kMetricsName = "metrics.jsonl";
+constexpr const char* kSummaryName = "summary.json";
+constexpr const char* kFusedName = "fused";
+constexpr const char* kSideBySideName = "side_by_side";
+
 void make_directory(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw Error(ErrorKind::Io, dir.string() + ": cannot create: " + ec.message());
+}
+
+// A new file only (O_EXCL, O_NOFOLLOW): nothing planted under its name is opened.
+int create_new(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0) throw Error(ErrorKind::Io, path + ": cannot create: " + std::strerror(errno));
+    return fd;
+}
+
+// All of text in as few write() calls as the kernel allows: one for a line of
+// any length on a local file system, so a kill never leaves half a line.
+void write_all(int fd, const std::string& text, const std::string& path) {
+    std::size_t done = 0;
+    while (done < text.size()) {
+        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) throw Error(ErrorKind::Io, path + ": write failed: " + std::strerror(n < 0 ? errno : ENOSPC));
+        done += std::size_t(n);
+    }
 }
 
 std::string cycle_name(std::uint64_t cycle) {
@@ -39,10 +70,14 @@ Image side_by_side(const Frame& still, const Image& fused) {
 }
 
 void write_text(const std::string& path, const std::string& text) {
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) throw Error(ErrorKind::Io, path + ": cannot write");
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    if (std::fclose(f) != 0 || !ok) throw Error(ErrorKind::Io, path + ": write failed");
+    const int fd = create_new(path);
+    try {
+        write_all(fd, text, path);
+    } catch (...) {
+        ::close(fd);
+        throw;
+    }
+    if (::close(fd) != 0) throw Error(ErrorKind::Io, path + ": write failed: " + std::strerror(errno));
 }
 
 }  // namespace
@@ -66,45 +101,50 @@ std::size_t static_slot(const IlluminationSequence& sequence, const LedLayout& l
     return it == sequence.end() ? 0 : std::size_t(it - sequence.begin());
 }
 
+bool is_run_output_entry(const std::string& name) {
+    return name == kMetricsName || name == kSummaryName || name == kFusedName || name == kSideBySideName;
+}
+
 RunOutput::RunOutput(std::string directory, std::string object, std::size_t slot)
     : directory_(std::move(directory)), object_(std::move(object)), static_slot_(slot) {
-    make_directory(directory_);
-    const std::string path = (fs::path(directory_) / "metrics.jsonl").string();
-    metrics_ = std::fopen(path.c_str(), "wb");
-    if (!metrics_) throw Error(ErrorKind::Io, path + ": cannot write");
+    io::check_plain_component(object_, "object");
+    metrics_fd_ = create_new((fs::path(directory_) / kMetricsName).string());
 }
 
 RunOutput::~RunOutput() {
-    if (metrics_) std::fclose(metrics_);
+    if (metrics_fd_ >= 0) ::close(metrics_fd_);
 }
 
 void RunOutput::write(const CycleResult& cycle) {
+    const std::string metrics_path = (fs::path(directory_) / kMetricsName).string();
     for (const SensorCycle& s : cycle.sensors) {
-        std::fprintf(metrics_, "%s\n", metrics_line(cycle, s, object_).c_str());
+        write_all(metrics_fd_, metrics_line(cycle, s, object_) + "\n", metrics_path);
         if (s.status != SensorStatus::Ok || !s.fused) continue;
-        const fs::path dir = fs::path(directory_) / "fused" / s.serial;
+        io::check_plain_component(s.serial, "serial");
+        const fs::path dir = fs::path(directory_) / kFusedName / s.serial;
         make_directory(dir);
         io::write_image((dir / cycle_name(cycle.cycle)).string(), *s.fused);
         auto it = std::find_if(last_.begin(), last_.end(), [&](const auto& e) { return e.first == s.serial; });
         if (it == last_.end()) it = last_.insert(last_.end(), {s.serial, {}});
         it->second = {s.frames, *s.fused};
     }
-    std::fflush(metrics_);  // a Ctrl-C or a crash later keeps every finished cycle
 }
 
 void RunOutput::finish(const std::string& summary_json) {
-    const fs::path dir = fs::path(directory_) / "side_by_side";
+    const fs::path dir = fs::path(directory_) / kSideBySideName;
     for (const auto& [serial, last] : last_) {
         make_directory(dir);
-        io::write_image((dir / (object_ + "_" + serial + ".png")).string(),
+        const std::string name = object_ + "_" + serial + ".png";
+        io::check_plain_component(name, "side-by-side picture");
+        io::write_image((dir / name).string(),
                         side_by_side(last.frames.at(static_slot_), last.fused));
     }
-    write_text((fs::path(directory_) / "summary.json").string(), summary_json + "\n");
-    if (metrics_ && std::fclose(metrics_) != 0) {
-        metrics_ = nullptr;
-        throw Error(ErrorKind::Io, (fs::path(directory_) / "metrics.jsonl").string() + ": write failed");
-    }
-    metrics_ = nullptr;
+    write_text((fs::path(directory_) / kSummaryName).string(), summary_json + "\n");
+    const int fd = metrics_fd_;
+    metrics_fd_ = -1;
+    if (::close(fd) != 0)
+        throw Error(ErrorKind::Io, (fs::path(directory_) / kMetricsName).string() + ": write failed: " +
+                                       std::strerror(errno));
 }
 
 }  // namespace vkfuse::cli

@@ -3,8 +3,9 @@
 //   DIR/fused/<serial>/<cycle>.png          every fused frame (8-bit, clamped)
 //   DIR/side_by_side/<object>_<serial>.png  the last static frame | the last fused frame
 //   DIR/summary.json                        the summary `vkfuse run` prints
+// DIR is a StagedDirectory's fresh staging directory: these files are new,
+// and appear under the user's --out name only when the run succeeds.
 #pragma once
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,14 @@ std::string metrics_line(const CycleResult& cycle, const SensorCycle& sensor, co
 // static illumination), else slot 0.
 std::size_t static_slot(const IlluminationSequence& sequence, const LedLayout& leds);
 
+// Whether name is a top-level entry RunOutput writes (what --replace may replace).
+bool is_run_output_entry(const std::string& name);
+
 class RunOutput {
 public:
-    // Creates DIR (an existing one is reused; files of the same name are replaced).
+    // directory must exist and be empty (a staging directory). object and the
+    // serials become file names and must be plain components (checked:
+    // Error(Format) otherwise, whatever a replayed dataset says).
     RunOutput(std::string directory, std::string object, std::size_t static_slot);
     ~RunOutput();
     RunOutput(const RunOutput&) = delete;
@@ -39,7 +45,7 @@ private:
     };
     std::string directory_, object_;
     std::size_t static_slot_;
-    std::FILE* metrics_ = nullptr;
+    int metrics_fd_ = -1;
     std::vector<std::pair<std::string, Last>> last_;  // by serial, in sensor order
 };
 

@@ -1,12 +1,14 @@
-// stop_signal.hpp - Ctrl-C as a request to stop after the current cycle.
+// stop_signal.hpp - Ctrl-C or SIGTERM as a request to stop after the current cycle.
 #pragma once
 #include <csignal>
 
 namespace vkfuse::cli {
 
-// While alive, SIGINT only sets a flag that the run loop polls between
-// cycles; the loop then finishes the cycle in hand and flushes its files. The
-// handler resets itself (SA_RESETHAND), so a second Ctrl-C kills at once.
+// While alive, SIGINT and SIGTERM (what `timeout`, systemd and docker send)
+// only set a flag that the run loop polls between cycles; the loop then
+// finishes the cycle in hand and writes its files (a --record's manifest
+// too). Each handler resets itself (SA_RESETHAND), so a second signal of
+// the same kind kills at once.
 // No self-pipe is needed: the loop never blocks longer than one cycle, which
 // the rig bounds by its cycle timeout. One instance at a time.
 class StopSignal {
@@ -19,7 +21,7 @@ public:
     bool requested() const;
 
 private:
-    struct sigaction previous_ {};
+    struct sigaction previous_int_ {}, previous_term_ {};
 };
 
 }  // namespace vkfuse::cli

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <thread>
 
+#include "core/deadline.hpp"
 #include "rig/engine.hpp"
 #include "rig/hub.hpp"
 #include "vkfuse/error.hpp"
@@ -15,7 +16,7 @@ namespace {
 using WallClock = std::chrono::steady_clock;
 
 WallClock::time_point after(double seconds) {
-    return WallClock::now() + std::chrono::duration_cast<WallClock::duration>(std::chrono::duration<double>(seconds));
+    return deadline_after<WallClock>(WallClock::now(), seconds);
 }
 
 double seconds_since(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }

@@ -4,6 +4,7 @@
 #include <mutex>
 #include <thread>
 
+#include "core/deadline.hpp"
 #include "vkfuse/clock.hpp"
 
 namespace vkfuse {
@@ -14,8 +15,7 @@ public:
     double now() const override { return std::chrono::duration<double>(Steady::now() - start_).count(); }
 
     void wait_until(double seconds) override {
-        const auto deadline = start_ + std::chrono::duration_cast<Steady::duration>(std::chrono::duration<double>(seconds));
-        std::this_thread::sleep_until(deadline);
+        std::this_thread::sleep_until(deadline_after<Steady>(start_, seconds));
     }
 
 private:

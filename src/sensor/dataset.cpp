@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "io/file_bytes.hpp"
+#include "io/path_component.hpp"
 #include "sensor/dataset_manifest.hpp"
 #include "vkfuse/dataset.hpp"
 #include "vkfuse/error.hpp"
@@ -11,10 +12,6 @@
 
 namespace vkfuse {
 namespace {
-
-std::string join_path(const std::string& directory, const std::string& name) {
-    return (std::filesystem::path(directory) / name).string();
-}
 
 void check_unique_serials(const Dataset& d, const std::string& file) {
     for (std::size_t i = 0; i < d.sensors.size(); ++i)
@@ -43,7 +40,7 @@ std::vector<std::string> Dataset::objects() const {
 }
 
 Dataset read_dataset(const std::string& directory) {
-    const std::string file = join_path(directory, sensor::kManifestName);
+    const std::string file = io::resolve_inside(directory, sensor::kManifestName);
     const std::vector<unsigned char> bytes = io::read_file_bytes(file);
     const json::Value manifest =
         json::parse(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file);
@@ -53,7 +50,7 @@ Dataset read_dataset(const std::string& directory) {
 }
 
 Frame load_frame(const Dataset& dataset, const DatasetSensorRecord& sensor, const DatasetFrame& frame) {
-    const std::string path = join_path(dataset.directory, frame.file);
+    const std::string path = io::resolve_inside(dataset.directory, frame.file);
     const Image image = io::read_image(path);
     const SensorInfo& info = sensor.info;
     if (image.height != info.height || image.width != info.width || image.channels != 3)

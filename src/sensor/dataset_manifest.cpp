@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "io/path_component.hpp"
 #include "vkfuse/error.hpp"
 
 namespace vkfuse::sensor {
@@ -123,8 +124,8 @@ LedLayout leds_from(const Node& n) {
 DatasetFrame frame_from(const Node& n, const LedLayout& leds) {
     DatasetFrame f;
     f.file = n["file"].text();
-    if (f.file.empty() || f.file.front() == '/' || f.file.find("..") != std::string::npos)
-        n["file"].fail("expected a path inside the dataset");
+    if (!io::is_contained_relative_path(f.file))
+        n["file"].fail("expected a relative path inside the dataset (plain components, no '.' or '..')");
     f.index = std::uint64_t(n["index"].integer(0, kMaxIndex));
     f.timestamp = n["timestamp"].number();
     f.illumination = n["illumination"].parsed([&](const std::string& s) {
@@ -139,7 +140,9 @@ DatasetFrame frame_from(const Node& n, const LedLayout& leds) {
 DatasetSensorRecord sensor_from(const Node& n) {
     DatasetSensorRecord s;
     s.info.serial = n["serial"].text();
-    if (s.info.serial.empty()) n["serial"].fail("expected a non-empty serial");
+    // Serials and object names become directory and file names of a run's
+    // output: one plain component each, whatever the manifest says.
+    if (std::string why = io::component_problem(s.info.serial); !why.empty()) n["serial"].fail(why);
     s.info.model = n["model"].text();
     s.info.width = int(n["width"].integer(1, kMaxSide));
     s.info.height = int(n["height"].integer(1, kMaxSide));
@@ -148,6 +151,7 @@ DatasetSensorRecord sensor_from(const Node& n) {
     for (const Node& t : n["takes"].items()) {
         DatasetTake take;
         take.object = t["object"].text();
+        if (std::string why = io::component_problem(take.object); !why.empty()) t["object"].fail(why);
         take.background = t["background"].boolean();
         for (const Node& f : t["frames"].items()) take.frames.push_back(frame_from(f, s.info.leds));
         s.takes.push_back(std::move(take));

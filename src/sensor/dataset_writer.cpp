@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "io/atomic_write.hpp"
+#include "io/path_component.hpp"
 #include "sensor/dataset_manifest.hpp"
 #include "vkfuse/dataset.hpp"
 #include "vkfuse/error.hpp"
@@ -22,11 +23,6 @@ void prepare_directory(const std::string& directory) {
     if (ec) throw Error(ErrorKind::Io, directory + ": cannot create: " + ec.message());
 }
 
-// Serials and object names become directory names: keep them to one plain component.
-void check_component(const std::string& name, const std::string& what) {
-    if (name.empty() || name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos)
-        throw Error(ErrorKind::InvalidArgument, what + " \"" + name + "\": not usable as a directory name");
-}
 
 Image to_image(const Frame& f) {
     Image img(f.height, f.width, 3);
@@ -50,7 +46,7 @@ DatasetWriter::DatasetWriter(std::string directory, std::string source) {
 }
 
 int DatasetWriter::add_sensor(const SensorInfo& info) {
-    check_component(info.serial, "serial");
+    io::check_plain_component(info.serial, "serial");
     std::lock_guard lock(mutex_);
     for (const DatasetSensorRecord& s : dataset_.sensors)
         if (s.info.serial == info.serial)
@@ -68,7 +64,7 @@ void DatasetWriter::set_run(const DatasetRun& run) {
 void DatasetWriter::add_frame(int sensor, const std::string& object, bool background, const Frame& frame,
                               const Illumination& lit_by, std::int64_t cycle) {
     const std::string take = background ? std::string("background") : object;
-    check_component(take, "object");
+    io::check_plain_component(take, "object");
     std::string relative;
     {
         std::lock_guard lock(mutex_);

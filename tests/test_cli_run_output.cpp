@@ -1,0 +1,277 @@
+// vkfuse run against hostile datasets and unlucky users: nothing is written
+// outside --out whatever a replayed manifest says, no existing file is
+// touched, a failing run changes nothing, and the output directory holds one
+// whole run or nothing.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "cli_runner.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+
+std::size_t count_lines(const std::string& text) { return std::size_t(std::count(text.begin(), text.end(), '\n')); }
+
+// Every file under dir (links included, not followed) with its bytes: a
+// snapshot to compare before and after a command.
+std::vector<std::pair<std::string, std::string>> snapshot(const std::string& dir) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        const std::string rel = fs::relative(e.path(), dir).string();
+        if (e.is_symlink())
+            out.emplace_back(rel, "-> " + fs::read_symlink(e.path()).string());
+        else if (e.is_regular_file())
+            out.emplace_back(rel, read_bytes(e.path().string()));
+        else
+            out.emplace_back(rel + "/", "");
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::vector<std::string> run_args(const TempDir& tmp, const std::string& out, int cycles) {
+    return {"run",           "--virtual-clock", "--cycles", std::to_string(cycles), "--background-frames",
+            "1",             "--method",        "brovey",   "--backend",            "cpu",
+            "--out",         tmp.file(out)};
+}
+
+// A small recorded run (1 sensor, 2 cycles) to tamper with.
+std::string record(const TempDir& tmp, const std::string& name = "rec") {
+    std::vector<std::string> args = run_args(tmp, name + "-out", 2);
+    args.insert(args.end(), {"--record", tmp.file(name)});
+    const CliResult r = run_cli(args);
+    if (r.status != 0) throw std::runtime_error("recording failed: " + r.err);
+    return tmp.file(name);
+}
+
+void replace_in_file(const std::string& path, const std::string& from, const std::string& to) {
+    std::string text = read_bytes(path);
+    const std::size_t at = text.find(from);
+    if (at == std::string::npos) throw std::runtime_error(path + ": no " + from);
+    write_bytes(path, text.replace(at, from.size(), to));
+}
+
+// The first frame file of the object take, as the manifest lists it.
+std::string first_object_frame(const std::string& dataset) {
+    const std::string text = read_bytes(dataset + "/manifest.json");
+    const std::size_t take = text.find("\"object\": \"coin\"");
+    const std::size_t file = text.find("\"file\": \"", take) + 9;
+    return text.substr(file, text.find('"', file) - file);
+}
+
+void expect_one_line_failure(const CliResult& r, const std::string& fragment) {
+    EXPECT_EQ(r.status, 2) << r.err;
+    ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
+    EXPECT_TRUE(has(r.err, fragment)) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+TEST(CliRunHostile, AbsoluteSerialInAManifestWritesNothingAnywhere) {
+    TempDir tmp;
+    const std::string rec = record(tmp);
+    const std::string elsewhere = tmp.file("elsewhere");
+    replace_in_file(rec + "/manifest.json", "\"serial\": \"SIM-0001\"", "\"serial\": \"" + elsewhere + "\"");
+    const CliResult r = run_cli({"run", "--replay", rec, "--backend", "cpu", "--out", tmp.file("o")});
+    expect_one_line_failure(r, "sensors[0].serial: \"" + elsewhere + "\": not usable as a file name");
+    EXPECT_FALSE(fs::exists(elsewhere));
+    EXPECT_FALSE(fs::exists(tmp.file("o")));
+}
+
+TEST(CliRunHostile, ObjectNameThatClimbsOutIsRefused) {
+    TempDir tmp;
+    const std::string rec = record(tmp);
+    replace_in_file(rec + "/manifest.json", "\"object\": \"coin\"", "\"object\": \"../../../pwn\"");
+    const CliResult r =
+        run_cli({"run", "--replay", rec, "--object", "../../../pwn", "--backend", "cpu", "--out", tmp.file("a/b/o")});
+    expect_one_line_failure(r, "\"../../../pwn\": not usable as a file name");
+    EXPECT_FALSE(fs::exists(tmp.file("pwn_SIM-0001.png")));
+    EXPECT_FALSE(fs::exists(tmp.file("a/b/o")));
+}
+
+// "000040..png" holds ".." but no ".." component: an ordinary name.
+TEST(CliRunHostile, DotsInsideANameAreNotATraversal) {
+    TempDir tmp;
+    const std::string rec = record(tmp);
+    const std::string frame = first_object_frame(rec);
+    const std::string renamed = frame.substr(0, frame.size() - 4) + "..png";
+    fs::rename(rec + "/" + frame, rec + "/" + renamed);
+    replace_in_file(rec + "/manifest.json", "\"" + frame + "\"", "\"" + renamed + "\"");
+    const CliResult r = run_cli({"run", "--replay", rec, "--backend", "cpu", "--out", tmp.file("o")});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count_lines(read_bytes(tmp.file("o/metrics.jsonl"))), 2u);
+}
+
+TEST(CliRunHostile, FramePathsWithDotDotComponentsAreRefused) {
+    TempDir tmp;
+    const std::string rec = record(tmp);
+    const std::string frame = first_object_frame(rec);
+    replace_in_file(rec + "/manifest.json", "\"" + frame + "\"", "\"SIM-0001/../../rec-out/summary.json\"");
+    const CliResult r = run_cli({"run", "--replay", rec, "--backend", "cpu", "--out", tmp.file("o")});
+    expect_one_line_failure(r, "expected a relative path inside the dataset");
+}
+
+TEST(CliRunHostile, SymbolicLinkLeadingOutOfTheDatasetIsRefused) {
+    TempDir tmp;
+    const std::string rec = record(tmp);
+    const std::string frame = rec + "/" + first_object_frame(rec);
+    const std::string outside = tmp.file("outside.png");
+    fs::copy_file(frame, outside);
+    fs::remove(frame);
+    fs::create_symlink(outside, frame);
+    const CliResult r = run_cli({"run", "--replay", rec, "--backend", "cpu", "--out", tmp.file("o")});
+    expect_one_line_failure(r, "leads outside " + rec + " (symbolic link)");
+    EXPECT_FALSE(fs::exists(tmp.file("o")));
+}
+
+// A link planted where the run writes is never opened, so its target keeps
+// its bytes; --replace swaps the whole directory and drops the link itself.
+TEST(CliRunHostile, PlantedSymlinkIsNotFollowed) {
+    TempDir tmp;
+    const std::string victim = tmp.file("victim.txt");
+    write_bytes(victim, "precious\n");
+    fs::create_directory(tmp.file("o"));
+    fs::create_symlink(victim, tmp.file("o/metrics.jsonl"));
+    const CliResult refused = run_cli(run_args(tmp, "o", 1));
+    expect_one_line_failure(refused, "--out " + tmp.file("o") + ": exists and is not empty");
+    std::vector<std::string> replace = run_args(tmp, "o", 1);
+    replace.push_back("--replace");
+    const CliResult replaced = run_cli(replace);
+    ASSERT_EQ(replaced.status, 0) << replaced.err;
+    EXPECT_EQ(read_bytes(victim), "precious\n");
+    EXPECT_FALSE(fs::is_symlink(tmp.file("o/metrics.jsonl")));
+    EXPECT_EQ(count_lines(read_bytes(tmp.file("o/metrics.jsonl"))), 1u);
+}
+
+TEST(CliRunHostile, OutAsASymlinkIsRefused) {
+    TempDir tmp;
+    fs::create_directory(tmp.file("real"));
+    fs::create_directory_symlink(tmp.file("real"), tmp.file("o"));
+    expect_one_line_failure(run_cli(run_args(tmp, "o", 1)), "is a symbolic link");
+    EXPECT_TRUE(fs::is_empty(tmp.file("real")));
+}
+
+// A run that fails (here: --record names a used directory) leaves the earlier
+// run's files exactly as they were, and no staging directory behind.
+TEST(CliRunUnlucky, AFailingRunKeepsThePreviousResults) {
+    TempDir tmp;
+    ASSERT_EQ(run_cli(run_args(tmp, "prev", 3)).status, 0);
+    fs::create_directory(tmp.file("used"));
+    write_bytes(tmp.file("used/x"), "x");
+    const auto before = snapshot(tmp.file("prev"));
+    std::vector<std::string> args = run_args(tmp, "prev", 1);
+    args.insert(args.end(), {"--replace", "--record", tmp.file("used")});
+    expect_one_line_failure(run_cli(args), "--record " + tmp.file("used") + ": exists and is not empty");
+    EXPECT_EQ(snapshot(tmp.file("prev")), before);
+    EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"prev", "used"}));
+}
+
+// Runs never mix in one --out: without --replace a used one is refused; with
+// it the directory holds the new run alone (no earlier fused frame left).
+TEST(CliRunUnlucky, ASecondRunReplacesOrIsRefused) {
+    TempDir tmp;
+    ASSERT_EQ(run_cli(run_args(tmp, "o", 3)).status, 0);
+    const auto first = snapshot(tmp.file("o"));
+    expect_one_line_failure(run_cli(run_args(tmp, "o", 1)), "add --replace to replace it");
+    EXPECT_EQ(snapshot(tmp.file("o")), first);
+    std::vector<std::string> args = run_args(tmp, "o", 1);
+    args.push_back("--replace");
+    const CliResult r = run_cli(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count_lines(read_bytes(tmp.file("o/metrics.jsonl"))), 1u);
+    std::size_t fused = 0;
+    for (const auto& e : fs::directory_iterator(tmp.file("o/fused/SIM-0001"))) fused += e.is_regular_file();
+    EXPECT_EQ(fused, 1u);
+    EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"o"}));
+}
+
+// --replace never deletes a directory vkfuse run did not write.
+TEST(CliRunUnlucky, ReplaceRefusesAForeignDirectory) {
+    TempDir tmp;
+    fs::create_directory(tmp.file("home"));
+    write_bytes(tmp.file("home/thesis.tex"), "years of work");
+    std::vector<std::string> args = run_args(tmp, "home", 1);
+    args.push_back("--replace");
+    expect_one_line_failure(run_cli(args), "holds thesis.tex, which this command does not write");
+    EXPECT_EQ(read_bytes(tmp.file("home/thesis.tex")), "years of work");
+}
+
+TEST(CliRunUnlucky, EmptyExistingOutIsUsed) {
+    TempDir tmp;
+    fs::create_directory(tmp.file("o"));
+    ASSERT_EQ(run_cli(run_args(tmp, "o", 1)).status, 0);
+    EXPECT_TRUE(fs::exists(tmp.file("o/summary.json")));
+}
+
+// Without --out, stdout carries the only result: a failed write is a failure.
+TEST(CliRunUnlucky, SummaryToAFullDeviceFails) {
+    if (::access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no /dev/full";
+    const std::string command = std::string(VKFUSE_CLI) +
+                                " run --virtual-clock --cycles 1 --background-frames 1 --backend cpu >/dev/full 2>&1";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+// Seconds far beyond what int64 nanoseconds hold mean "wait as long as it
+// takes", not "time out at once".
+TEST(CliRunUnlucky, HugeTimeoutDoesNotOverflow) {
+    TempDir tmp;
+    std::vector<std::string> args = run_args(tmp, "o", 2);
+    args.insert(args.end(), {"--timeout", "1e10"});
+    const CliResult r = run_cli(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(has(r.out, "\"fused\": 2,")) << r.out;
+    EXPECT_TRUE(has(r.out, "\"errors\": []")) << r.out;
+}
+
+// SIGTERM (timeout, systemd, docker) ends the run like Ctrl-C: the cycle in
+// hand finishes, --out appears whole and the --record dataset has its manifest.
+TEST(CliRunUnlucky, SigtermFinishesTheRunAndTheRecording) {
+    TempDir tmp;
+    std::vector<std::string> words{VKFUSE_CLI, "run",   "--virtual-clock", "--background-frames", "1",
+                                   "--method", "brovey", "--backend",      "cpu",                 "--out",
+                                   tmp.file("o"), "--record", tmp.file("rec")};
+    std::vector<char*> argv = c_strings(words);
+    pid_t pid = 0;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, tmp.file("stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    ASSERT_EQ(posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    // The run writes into a hidden staging directory beside --out: wait for
+    // two metrics lines there.
+    auto staged_lines = [&] {
+        for (const auto& e : fs::directory_iterator(tmp.file("")))
+            if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0 &&
+                fs::exists(e.path() / "metrics.jsonl"))
+                return count_lines(read_bytes((e.path() / "metrics.jsonl").string()));
+        return std::size_t(0);
+    };
+    for (int i = 0; i < 600 && staged_lines() < 2; ++i) usleep(100000);
+    kill(pid, SIGTERM);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    const std::size_t cycles = count_lines(read_bytes(tmp.file("o/metrics.jsonl")));
+    EXPECT_GE(cycles, 2u);
+    EXPECT_EQ(read_bytes(tmp.file("o/summary.json")), read_bytes(tmp.file("stdout")));
+    ASSERT_TRUE(fs::exists(tmp.file("rec/manifest.json")));
+    const CliResult replay = run_cli({"run", "--replay", tmp.file("rec"), "--backend", "cpu", "--out", tmp.file("b")});
+    ASSERT_EQ(replay.status, 0) << replay.err;
+    EXPECT_EQ(read_bytes(tmp.file("b/metrics.jsonl")), read_bytes(tmp.file("o/metrics.jsonl")));
+}
+
+}  // namespace
+}  // namespace vkfuse::test
