@@ -273,5 +273,50 @@ TEST(CliRunUnlucky, SigtermFinishesTheRunAndTheRecording) {
     EXPECT_EQ(read_bytes(tmp.file("b/metrics.jsonl")), read_bytes(tmp.file("o/metrics.jsonl")));
 }
 
+// A sensor that missed a cycle when recorded misses the same cycle in the
+// replay: frames are placed by their recorded cycle, not by setting, so no
+// cycle shifts and none is dropped.
+TEST(CliRunUnlucky, ReplayKeepsARecordedTimeoutInItsCycle) {
+    TempDir tmp;
+    std::vector<std::string> live = run_args(tmp, "live", 4);
+    live.insert(live.end(), {"--sensors", "2", "--record", tmp.file("rec")});
+    ASSERT_EQ(run_cli(live).status, 0);
+    // As if SIM-0002 had timed out in cycle 1: its frames of that cycle gone,
+    // the miss recorded the way `vkfuse run --record` records one.
+    const std::string manifest = tmp.file("rec/manifest.json");
+    std::string kept;
+    std::size_t dropped = 0;
+    for (std::size_t start = 0, end; (end = read_bytes(manifest).find('\n', start)) != std::string::npos;
+         start = end + 1) {
+        const std::string line = read_bytes(manifest).substr(start, end - start + 1);
+        const bool miss = has(line, "\"file\": \"SIM-0002/coin/") && has(line, "\"cycle\": 1}");
+        dropped += miss;
+        if (!miss) kept += line;
+    }
+    ASSERT_EQ(dropped, 2u);
+    const std::string error = "SIM-0002: no frames within 5.000000 s (cycle 1)";
+    write_bytes(manifest, kept);
+    replace_in_file(manifest, "\"serial\": \"SIM-0002\",",
+                    "\"serial\": \"SIM-0002\", \"missed\": [{\"cycle\": 1, \"status\": \"timeout\", \"error\": \"" +
+                        error + "\"}],");
+    const CliResult r = run_cli({"run", "--replay", tmp.file("rec"), "--backend", "cpu", "--out", tmp.file("again")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::string expected;
+    const std::string recorded = read_bytes(tmp.file("live/metrics.jsonl"));
+    for (std::size_t start = 0, end; (end = recorded.find('\n', start)) != std::string::npos; start = end + 1) {
+        const std::string line = recorded.substr(start, end - start + 1);
+        expected += has(line, "{\"cycle\": 1, \"sensor\": \"SIM-0002\"")
+                        ? "{\"cycle\": 1, \"sensor\": \"SIM-0002\", \"status\": \"timeout\", \"error\": \"" + error +
+                              "\"}\n"
+                        : line;
+    }
+    EXPECT_EQ(read_bytes(tmp.file("again/metrics.jsonl")), expected);
+    for (const char* f : {"SIM-0001/000001.png", "SIM-0002/000000.png", "SIM-0002/000002.png", "SIM-0002/000003.png"})
+        EXPECT_TRUE(read_bytes(tmp.file(std::string("again/fused/") + f)) ==
+                    read_bytes(tmp.file(std::string("live/fused/") + f)))
+            << f << " differs from the recorded run's";
+    EXPECT_FALSE(fs::exists(tmp.file("again/fused/SIM-0002/000001.png")));
+}
+
 }  // namespace
 }  // namespace vkfuse::test

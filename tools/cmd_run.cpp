@@ -145,7 +145,10 @@ void open_outputs(Session& s) {
 void record_cycle(DatasetWriter& rec, const CycleResult& cycle, const RunOptions& o) {
     for (std::size_t i = 0; i < cycle.sensors.size(); ++i) {
         const SensorCycle& s = cycle.sensors[i];
-        if (s.status != SensorStatus::Ok) continue;
+        if (s.status != SensorStatus::Ok) {
+            rec.add_miss(int(i), {std::int64_t(cycle.cycle), std::string(to_string(s.status)), s.error});
+            continue;
+        }
         for (std::size_t k = 0; k < s.frames.size(); ++k)
             rec.add_frame(int(i), o.object, false, s.frames[k], o.sequence[k], std::int64_t(cycle.cycle));
     }
@@ -171,7 +174,8 @@ RunStats cycle_loop(Session& s, Rig& rig, const StopSignal& stop) {
     RunStats stats(rig.sensors());
     Progress progress("vkfuse run");
     while (more_to_do(s, rig, stats, stop)) {
-        const CycleResult cycle = rig.next();
+        CycleResult cycle = rig.next();
+        if (s.dataset) report_as_recorded(cycle, *s.dataset);
         const auto write_start = std::chrono::steady_clock::now();
         if (s.output) s.output->write(cycle);
         if (s.recorder) record_cycle(*s.recorder, cycle, s.options);

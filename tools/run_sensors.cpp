@@ -38,4 +38,18 @@ RunSensors replayed_sensors(const RunOptions& o, std::shared_ptr<const Dataset> 
     return out;
 }
 
+void report_as_recorded(CycleResult& cycle, const Dataset& dataset) {
+    for (SensorCycle& s : cycle.sensors) {
+        if (s.status == SensorStatus::Ok) continue;
+        for (const DatasetSensorRecord& r : dataset.sensors) {
+            if (r.info.serial != s.serial) continue;
+            for (const DatasetMiss& m : r.missed)
+                if (m.cycle == std::int64_t(cycle.cycle)) {
+                    s.status = m.status == "failed" ? SensorStatus::Failed : SensorStatus::Timeout;
+                    s.error = m.error;
+                }
+        }
+    }
+}
+
 }  // namespace vkfuse::cli

@@ -29,4 +29,9 @@ RunSensors simulated_sensors(const RunOptions& options);
 // One DatasetSensor per recorded sensor, playing options.object.
 RunSensors replayed_sensors(const RunOptions& options, std::shared_ptr<const Dataset> dataset);
 
+// A replayed sensor that delivered nothing in a cycle in which the recorded
+// run also got nothing from it gets the recorded status and message, so the
+// replay reports what the recording did.
+void report_as_recorded(CycleResult& cycle, const Dataset& dataset);
+
 }  // namespace vkfuse::cli

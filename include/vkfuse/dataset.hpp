@@ -33,9 +33,18 @@ struct DatasetTake {
     std::vector<DatasetFrame> frames;
 };
 
+// A cycle of a recorded `vkfuse run` in which this sensor delivered nothing,
+// as the run reported it, so a replay reports the same.
+struct DatasetMiss {
+    std::int64_t cycle = 0;
+    std::string status;  // "timeout" or "failed"
+    std::string error;
+};
+
 struct DatasetSensorRecord {
     SensorInfo info;
     std::vector<DatasetTake> takes;  // background takes first
+    std::vector<DatasetMiss> missed;  // in cycle order
 };
 
 // How a recorded `vkfuse run` fused its frames, so a replay can do the same.
@@ -81,6 +90,8 @@ public:
     // "background" or the object, and lists it in the manifest.
     void add_frame(int sensor, const std::string& object, bool background, const Frame& frame,
                    const Illumination& lit_by, std::int64_t cycle = -1);
+    // A cycle in which sensor delivered nothing (status "timeout" or "failed").
+    void add_miss(int sensor, const DatasetMiss& miss);
     void finish();
 
     const std::string& directory() const { return dataset_.directory; }
@@ -94,9 +105,9 @@ private:
 // Plays one recorded sensor: its background takes, then the takes of one
 // object. set_illumination(s) selects the frames recorded under s (in
 // recording order, backgrounds first); grab() returns the next of them with
-// its recorded index, timestamp and illumination, without waiting. So a rig
-// that requests the same settings in the same order as the recorded run gets
-// the very same frames. Throws Error naming the serial when a setting has no
+// its recorded index, timestamp, illumination and cycle, without waiting. So a
+// rig that requests the same settings in the same order as the recorded run
+// gets the very same frames, each in the cycle it was recorded in. Throws Error naming the serial when a setting has no
 // frames or its frames are used up.
 class DatasetSensor : public Sensor {
 public:
@@ -109,7 +120,9 @@ public:
 
     // Frames recorded under setting (background takes included).
     std::size_t frames_lit_by(const Illumination& setting, bool background) const;
-    // How many full cycles of sequence the object's takes hold.
+    // How many cycles of sequence a replay plays: for frames recorded by
+    // `vkfuse run` (with cycle numbers) the last recorded cycle + 1, cycles
+    // the sensor missed included; otherwise the full cycles the takes hold.
     std::size_t cycles_available(const IlluminationSequence& sequence) const;
 
     struct Impl;

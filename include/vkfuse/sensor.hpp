@@ -30,6 +30,9 @@ struct Frame {
     // The setting that lit the whole frame, when the sensor knows it (a real
     // DIGIT does not; a dataset replays what was recorded).
     std::optional<Illumination> illumination;
+    // A replayed frame: the rig cycle it was fused in when recorded (a Rig
+    // then places it in that very cycle); -1 for a live frame.
+    std::int64_t recorded_cycle = -1;
 
     FrameView view() const { return {pixels.data(), height, width, 3, PixelType::U8}; }
 };

@@ -31,6 +31,12 @@ void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors) {
         if (!s.sensor) throw Error(ErrorKind::InvalidArgument, "rig: null sensor");
 }
 
+// Replayed frames recorded for a later cycle than the one being assembled:
+// the sensor missed this cycle when recorded, so it misses it again.
+bool for_a_later_cycle(const std::vector<Frame>& frames, std::uint64_t cycle) {
+    return !frames.empty() && frames.front().recorded_cycle > std::int64_t(cycle);
+}
+
 }  // namespace
 
 struct Rig::Impl {
@@ -44,6 +50,9 @@ struct Rig::Impl {
     std::unique_ptr<rig::Engine> bg_engine;  // fuses background means the way frames are fused
     std::vector<std::vector<Frame>> last_good;
     std::vector<bool> lagging;  // timed out and not delivered since: not waited for
+    // Delivered replayed frames (Frame::recorded_cycle): always waited for,
+    // and placed in their recorded cycle.
+    std::vector<bool> replayed;
     std::vector<std::uint8_t> black;
     std::uint64_t cycle = 0;
     bool started = false;
@@ -84,6 +93,7 @@ Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
     }
     last_good.resize(sensors.size());
     lagging.assign(sensors.size(), false);
+    replayed.assign(sensors.size(), false);
     black.assign(std::size_t(height) * std::size_t(width) * 3, 0);
 }
 
@@ -112,7 +122,7 @@ bool Rig::Impl::cycle_ready() const {
         any_alive = true;
         if (slot.ready)
             any_ready = true;
-        else if (!lagging[i])
+        else if (!lagging[i] || replayed[i])
             return false;
     }
     return any_ready || !any_alive;
@@ -232,7 +242,11 @@ void Rig::Impl::take_cycle(CycleResult& result) {
         rig::SensorSlot& slot = hub->slots[i];
         SensorCycle& r = result.sensors[i];
         r.serial = slot.serial;
-        if (slot.ready) {
+        if (slot.ready && !slot.ready->empty() && slot.ready->front().recorded_cycle >= 0) replayed[i] = true;
+        if (slot.ready && for_a_later_cycle(*slot.ready, result.cycle)) {
+            r.status = SensorStatus::Timeout;
+            r.error = slot.serial + ": no frames recorded for cycle " + std::to_string(result.cycle);
+        } else if (slot.ready) {
             r.frames = std::move(*slot.ready);
             slot.ready.reset();
         } else if (slot.failed) {
@@ -252,7 +266,7 @@ void Rig::Impl::fuse(CycleResult& result) {
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         const bool ok = result.sensors[i].status == SensorStatus::Ok;
         if (ok) last_good[i] = result.sensors[i].frames;
-        lagging[i] = !ok;
+        lagging[i] = !ok && !replayed[i];
     }
     engine->run(views_for(result.sensors));
     for (std::size_t i = 0; i < sensors.size(); ++i) {

@@ -64,6 +64,7 @@ Frame load_frame(const Dataset& dataset, const DatasetSensorRecord& sensor, cons
     f.height = image.height;
     f.width = image.width;
     f.illumination = frame.illumination;
+    f.recorded_cycle = frame.cycle;
     f.pixels.resize(image.data.size());
     // v / 255 read back from an 8-bit PNG: rounding restores the byte exactly.
     std::transform(image.data.begin(), image.data.end(), f.pixels.begin(),

@@ -32,9 +32,16 @@ Value sensor_json(const DatasetSensorRecord& s) {
         takes.push_back(
             Value::Object{{"object", t.object}, {"background", t.background}, {"frames", std::move(frames)}});
     }
-    return Value::Object{{"serial", s.info.serial},  {"model", s.info.model}, {"width", s.info.width},
-                         {"height", s.info.height},  {"fps", s.info.fps},     {"leds", leds_json(s.info.leds)},
-                         {"takes", std::move(takes)}};
+    Value::Object o{{"serial", s.info.serial}, {"model", s.info.model}, {"width", s.info.width},
+                    {"height", s.info.height}, {"fps", s.info.fps},     {"leds", leds_json(s.info.leds)},
+                    {"takes", std::move(takes)}};
+    if (!s.missed.empty()) {
+        Value::Array missed;
+        for (const DatasetMiss& m : s.missed)
+            missed.push_back(Value::Object{{"cycle", m.cycle}, {"status", m.status}, {"error", m.error}});
+        o.emplace_back("missed", std::move(missed));
+    }
+    return o;
 }
 
 Value run_json(const DatasetRun& r) {
@@ -110,6 +117,7 @@ private:
 
 constexpr std::int64_t kMaxSide = 1 << 16;
 constexpr std::int64_t kMaxIndex = std::int64_t(1) << 53;  // exact in a double
+constexpr std::size_t kMaxMessageBytes = 4096;
 
 LedLayout leds_from(const Node& n) {
     LedLayout l;
@@ -156,6 +164,16 @@ DatasetSensorRecord sensor_from(const Node& n) {
         for (const Node& f : t["frames"].items()) take.frames.push_back(frame_from(f, s.info.leds));
         s.takes.push_back(std::move(take));
     }
+    if (n.has("missed"))
+        for (const Node& m : n["missed"].items()) {
+            DatasetMiss miss;
+            miss.cycle = m["cycle"].integer(0, kMaxIndex);
+            miss.status = m["status"].text();
+            if (miss.status != "timeout" && miss.status != "failed") m["status"].fail("expected timeout or failed");
+            miss.error = m["error"].text();
+            if (miss.error.size() > kMaxMessageBytes) m["error"].fail("longer than 4096 bytes");
+            s.missed.push_back(std::move(miss));
+        }
     return s;
 }
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "vkfuse/dataset.hpp"
 #include "vkfuse/error.hpp"
@@ -100,6 +101,29 @@ std::size_t DatasetSensor::frames_lit_by(const Illumination& setting, bool backg
 }
 
 std::size_t DatasetSensor::cycles_available(const IlluminationSequence& sequence) const {
+    // Frames recorded by cycle, each cycle lit by exactly this sequence's
+    // settings: the replay spans every recorded cycle, missed ones included.
+    std::map<std::int64_t, std::multiset<std::string>> by_cycle;
+    bool tagged = true;
+    for (const DatasetTake& t : impl_->record->takes)
+        if (!t.background && t.object == impl_->object)
+            for (const DatasetFrame& f : t.frames) {
+                tagged = tagged && f.cycle >= 0;
+                by_cycle[f.cycle].insert(f.illumination.to_string());
+            }
+    std::multiset<std::string> settings;
+    for (const Illumination& s : sequence) settings.insert(s.to_string());
+    tagged = tagged && !by_cycle.empty() &&
+             std::all_of(by_cycle.begin(), by_cycle.end(), [&](const auto& c) { return c.second == settings; });
+    if (tagged) {
+        // Only cycles the manifest accounts for, each delivered or missed:
+        // a stray cycle number (2^53, say) never makes a replay run for ever.
+        std::set<std::int64_t> accounted;
+        for (const auto& c : by_cycle) accounted.insert(c.first);
+        for (const DatasetMiss& m : impl_->record->missed) accounted.insert(m.cycle);
+        const std::int64_t last_cycle = *accounted.rbegin();
+        return std::int64_t(accounted.size()) == last_cycle + 1 ? std::size_t(last_cycle) + 1 : by_cycle.size();
+    }
     std::map<std::string, std::size_t> uses;
     for (const Illumination& s : sequence) ++uses[s.to_string()];
     std::size_t cycles = sequence.empty() ? 0 : std::numeric_limits<std::size_t>::max();

@@ -51,7 +51,7 @@ int DatasetWriter::add_sensor(const SensorInfo& info) {
     for (const DatasetSensorRecord& s : dataset_.sensors)
         if (s.info.serial == info.serial)
             throw Error(ErrorKind::InvalidArgument, dataset_.directory + ": sensor " + info.serial + " added twice");
-    dataset_.sensors.push_back({info, {}});
+    dataset_.sensors.push_back({info, {}, {}});
     file_counters_.push_back(0);
     return int(dataset_.sensors.size()) - 1;
 }
@@ -85,6 +85,16 @@ void DatasetWriter::add_frame(int sensor, const std::string& object, bool backgr
     std::lock_guard lock(mutex_);
     take_of(dataset_.sensors[std::size_t(sensor)], object, background)
         .frames.push_back({relative, frame.index, frame.timestamp, lit_by, cycle});
+}
+
+void DatasetWriter::add_miss(int sensor, const DatasetMiss& miss) {
+    if (miss.status != "timeout" && miss.status != "failed")
+        throw Error(ErrorKind::InvalidArgument, dataset_.directory + ": miss status \"" + miss.status +
+                                                    "\" (expected timeout or failed)");
+    std::lock_guard lock(mutex_);
+    if (sensor < 0 || std::size_t(sensor) >= dataset_.sensors.size())
+        throw Error(ErrorKind::InvalidArgument, dataset_.directory + ": no sensor #" + std::to_string(sensor));
+    dataset_.sensors[std::size_t(sensor)].missed.push_back(miss);
 }
 
 void DatasetWriter::finish() {
