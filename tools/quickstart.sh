@@ -32,7 +32,7 @@ run_main_job() {
     ./build/vkfuse info
     # One simulated DIGIT pressing a coin, cycling the paper's best pair (15,15,15) + (0,15,0) and
     # fusing every cycle with its best method (wavelet, bior4.4), in real time.
-    ./build/vkfuse run --cycles 120 --out out
+    ./build/vkfuse run --cycles 120 --out out --replace  # out/ from an earlier quick start is replaced
     echo "quickstart: wrote out/metrics.jsonl, out/fused/SIM-0001/*.png, out/side_by_side/coin_SIM-0001.png"
 }
 
