@@ -318,5 +318,34 @@ TEST(CliRunUnlucky, ReplayKeepsARecordedTimeoutInItsCycle) {
     EXPECT_FALSE(fs::exists(tmp.file("again/fused/SIM-0002/000001.png")));
 }
 
+// An interrupted `vkfuse sim` leaves neither the dataset nor its staging directory.
+TEST(CliRunUnlucky, InterruptedSimLeavesNothing) {
+    TempDir tmp;
+    std::vector<std::string> words{VKFUSE_CLI, "sim", "--out", tmp.file("set"), "--frames", "4"};
+    std::vector<char*> argv = c_strings(words);
+    pid_t pid = 0;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, tmp.file("stderr").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ASSERT_EQ(posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    auto staged_files = [&] {
+        std::size_t n = 0;
+        for (const auto& e : fs::directory_iterator(tmp.file("")))
+            if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0)
+                for (const auto& f : fs::recursive_directory_iterator(e.path())) n += f.is_regular_file();
+        return n;
+    };
+    for (int i = 0; i < 600 && staged_files() < 3; ++i) usleep(50000);
+    kill(pid, SIGINT);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    EXPECT_TRUE(has(read_bytes(tmp.file("stderr")), "--out " + tmp.file("set") + ": interrupted; nothing written"));
+    EXPECT_EQ(tmp.entries(), std::vector<std::string>{"stderr"});
+}
+
 }  // namespace
 }  // namespace vkfuse::test

@@ -4,6 +4,8 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "staged_directory.hpp"
+#include "stop_signal.hpp"
 #include "vkfuse/dataset.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/sim_digit.hpp"
@@ -100,14 +102,22 @@ int run(const Args& args) {
     sim_options.object = "nothing";
     sim_options.clock = make_virtual_clock();
     const std::string out = args.value("--out").value_or("sim-dataset");
+    // Written beside its name and renamed into place when complete: an
+    // interrupted or failed recording leaves nothing behind.
+    StopSignal stop;
+    StagedDirectory staged(out, StagedDirectory::Policy{"--out", false, nullptr, ""});
     SimDigit sim(sim_options);
-    DatasetWriter writer(out, "vkfuse sim");
+    DatasetWriter writer(staged.path(), "vkfuse sim");
     Progress progress("vkfuse sim");
     rec.place_object = [&](const std::string& object) { sim.set_object(object); };
-    rec.progress = [&](std::size_t done, std::size_t total) { progress.fraction(done, total, "frames"); };
+    rec.progress = [&](std::size_t done, std::size_t total) {
+        if (stop.requested()) throw Error(ErrorKind::InvalidArgument, "--out " + out + ": interrupted; nothing written");
+        progress.fraction(done, total, "frames");
+    };
     record_dataset(sim, sim_options.clock, writer, rec);
     writer.finish();
     progress.finish();
+    staged.publish();
     std::printf("%s: %zu objects x %zu settings, %d + %d frames each (background + object)\n", out.c_str(),
                 rec.objects.size(), rec.grid.size(), rec.background_frames, rec.frames);
     return 0;
