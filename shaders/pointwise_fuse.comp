@@ -11,6 +11,8 @@ layout(push_constant, std430) uniform Push {
     uint frames;
     uint channels;
     uint method;  // 0 brovey, 1 channel-sum, 2 mean
+    Floats thresholds;  // brovey, when scaled_threshold: sensor s compares with thresholds.v[s]
+    uint scaled_threshold;
 } pc;
 
 void main() {
@@ -38,7 +40,11 @@ void main() {
             total += max(v, 0.0);
             mean += v;
         }
-        if (total >= 1e-6) {
+        // SPEC.md's s >= 1e-6. Float32 frames reach the device scaled by a
+        // power of two per sensor (vk/magnitude.hpp), and so does this
+        // threshold, written by the host every run; 8-bit frames never are.
+        float threshold = pc.scaled_threshold != 0u ? pc.thresholds.v[s] : 1e-6;
+        if (total >= threshold) {
             result = 0.0;
             for (uint k = 0u; k < pc.frames; ++k) {
                 float v = pc.src.v[((s * pc.frames + k) * pc.channels + c) * pc.pixels + p];

@@ -22,8 +22,9 @@ namespace vkfuse {
 // relative error (vkfuse-bench reports it per cell); it is never the default
 // and needs DeviceInfo::fp16_storage, else Plan throws Error(Device). Planes
 // then hold magnitudes up to 65504: where a value overflowed (inputs far
-// outside [0, 1]), fused() and metrics() throw Error(Numeric) instead of
-// returning Inf or NaN.
+// outside [0, 1]; float32 frames beyond 2^40 are scaled down first, see
+// run()), fused() and metrics() throw Error(Numeric) instead of returning Inf
+// or NaN.
 enum class Precision { Fp32, Fp16Storage };
 std::string_view to_string(Precision);
 
@@ -68,14 +69,23 @@ public:
 
     // Background frame of one sensor (shape height x width x channels, U8 or
     // F32 whatever config().input is: a background model is a float mean).
-    // Needed before run() when background_diff is set.
+    // Needed before run() when background_diff is set. Throws Error(Numeric)
+    // for NaN or Inf, and in a U8 plan for one whose largest magnitude is
+    // below 2^-64 (8-bit frames are never scaled, see run()).
     void set_background(int sensor, const FrameView& background);
 
     // frames: sensors x frames views, sensor-major (sensor s, frame k at
     // s * frames + k), each height x width x channels of type config().input.
+    // F32 frames may hold any finite magnitude, subnormal to FLT_MAX: where a
+    // sensor's frames (and background) lie outside [2^-40, 2^40) they are
+    // multiplied by a power of two on the way to the device and its results
+    // by its inverse on the way back (docs/architecture.md, "Magnitudes").
+    // NaN or Inf in a frame: Error(Numeric) naming it, as for the reference.
     void run(std::span<const FrameView> frames);
 
-    // Results of the last run().
+    // Results of the last run(). Error(Numeric) where a fused value lies
+    // beyond float32's range (the reference cannot store it either) or the
+    // device computed a non-finite value: never Inf, NaN or a wrong number.
     const Image& fused(int sensor) const;  // requires want_fused
     Metrics metrics(int sensor) const;     // requires want_metrics
     std::vector<KernelTime> profile() const;  // requires profile

@@ -16,7 +16,9 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input) {
                        .u32(pixels)
                        .u32(std::uint32_t(g.cfg.frames))
                        .u32(std::uint32_t(g.cfg.channels))
-                       .u32(kernel_method),
+                       .u32(kernel_method)
+                       .ptr(g.brovey_thresholds ? g.brovey_thresholds : input)
+                       .u32(g.brovey_thresholds ? 1 : 0),
                    grid.x, grid.y, g.planes_out());
     g.rec.mark(method == Method::Mean ? "mean" : method == Method::ChannelSum ? "channel_sum" : "brovey");
     return out;

@@ -1,7 +1,12 @@
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
+#include <optional>
 
+#include "vk/magnitude.hpp"
 #include "vk/plan_impl.hpp"
 #include "vkfuse/error.hpp"
 
@@ -45,6 +50,18 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context
     const std::size_t sensor_floats = plane_floats * cfg.channels;
     upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
     if (cfg.background_diff) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
+    const std::size_t S = std::size_t(cfg.sensors);
+    if (cfg.input == PixelType::F32 && cfg.fusion.method == Method::Brovey) {
+        thresholds = vk::Buffer(ctx, S * 4, vk::MemoryUse::Upload);
+        std::fill_n(static_cast<float*>(thresholds.mapped()), S, vk::brovey_threshold(0));
+    }
+    exponent.assign(S, 0);
+    next_exponent.assign(S, 0);
+    if (cfg.background_diff && cfg.input == PixelType::F32) {
+        background_host.resize(sensor_floats * S);
+        background_max.assign(S, 0);
+        background_exponent.assign(S, std::nullopt);
+    }
     const std::size_t fused_bytes = cfg.want_fused ? sensor_floats * cfg.sensors * 4 : 0;
     totals_offset = (fused_bytes + 255) / 256 * 256;
     readback = vk::Buffer(ctx, totals_offset + std::size_t(cfg.sensors) * 8 * 4, vk::MemoryUse::Readback);
@@ -60,7 +77,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context
 
 void Plan::Impl::record() {
     vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision));
-    vk::GraphBuilder g{ctx, cfg, rec, buffers};
+    vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address()};
     const std::uint32_t w = std::uint32_t(cfg.width), h = std::uint32_t(cfg.height);
     VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * w * h);
     rec.dispatch("unpack",
@@ -118,17 +135,41 @@ void check_view(const FrameView& v, const PlanConfig& c, const std::string& what
     if (!any_type && v.type != c.input) throw Error(ErrorKind::InvalidArgument, what + ": pixel type differs from the plan's");
 }
 
-// float16 planes hold magnitudes up to 65504; beyond that a plane sample
-// becomes Inf and the results Inf or NaN. Inputs in [0, 1] stay far inside
-// at any level count, so this is checked where results are read, not on
-// every input sample: a non-finite result of an fp16 plan is that overflow.
-void check_fp16_range(const PlanConfig& c, int sensor, std::span<const float> results) {
-    if (c.precision != Precision::Fp16Storage) return;
-    for (float v : results)
-        if (!std::isfinite(v))
-            throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) +
-                                                ": a value left float16's range (65504) in a precision fp16 plan; "
-                                                "fuse this input with Precision::Fp32");
+// "row 3, column 5, channel 2" for sample i of an HWC image of the plan's shape.
+std::string position(const PlanConfig& c, std::size_t i) {
+    const std::size_t C = std::size_t(c.channels), pixel = i / C;
+    return "row " + std::to_string(pixel / std::size_t(c.width)) + ", column " +
+           std::to_string(pixel % std::size_t(c.width)) + ", channel " + std::to_string(i % C);
+}
+
+// "NaN at row 3, column 5, channel 2", as the reference words bad input.
+std::string non_finite_at(const PlanConfig& c, float v, std::size_t i) {
+    return std::string(std::isnan(v) ? "NaN" : v > 0 ? "Inf" : "-Inf") + " at " + position(c, i);
+}
+
+std::string number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", v);
+    return text;
+}
+
+// A non-finite value read back from the device (fused samples or metric
+// sums). float16 planes hold magnitudes up to 65504; beyond that a plane
+// sample becomes Inf and the results Inf or NaN. Inputs in [0, 1] stay far
+// inside at any level count, so this is checked where results are read, not
+// on every input sample: a non-finite result of an fp16 plan is that
+// overflow. A float32 plan keeps its values inside float's range by scaling
+// (vk/magnitude.hpp), so one there is an overflow the scaling missed: an
+// error, never a NaN, Inf or JSON null handed on.
+void check_device_results(const PlanConfig& c, int sensor, std::span<const float> results, const char* what) {
+    const std::size_t bad = vk::first_non_finite(results.data(), results.size());
+    if (bad == results.size()) return;
+    if (c.precision == Precision::Fp16Storage)
+        throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) +
+                                            ": a value left float16's range (65504) in a precision fp16 plan; "
+                                            "fuse this input with Precision::Fp32");
+    throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) + ": " + what + " overflowed float32 on the device (" +
+                                        (std::isnan(results[bad]) ? "NaN" : "Inf") + ")");
 }
 
 }  // namespace
@@ -144,17 +185,93 @@ void Plan::set_background(int sensor, const FrameView& bg) {
     if (!im.cfg.background_diff) throw Error(ErrorKind::InvalidArgument, "plan: created without background_diff");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "background: sensor " + std::to_string(sensor) + " out of range");
-    check_view(bg, im.cfg, "background of sensor " + std::to_string(sensor), true);
-    // Backgrounds change rarely: convert to planar float here, once, on the host.
+    const std::string name = "background of sensor " + std::to_string(sensor);
+    check_view(bg, im.cfg, name, true);
     const std::size_t pixels = std::size_t(bg.height) * bg.width, C = std::size_t(bg.channels);
-    float* dst = static_cast<float*>(im.background.mapped()) + std::size_t(sensor) * pixels * C;
+    if (bg.type == PixelType::F32) {
+        const std::uint32_t largest = vk::max_abs(bg.data, pixels * C);
+        if (largest >= vk::kNonFinite) {
+            const std::size_t i = vk::first_non_finite(bg.data, pixels * C);
+            throw Error(ErrorKind::Numeric, name + ": " + non_finite_at(im.cfg, vk::load(bg.data, i), i));
+        }
+        // Frames of 8 bits are never scaled (vk/magnitude.hpp): a background
+        // this small would lose its significant bits to the subnormal
+        // flushing of the device where a frame is black.
+        if (im.cfg.input == PixelType::U8 && largest != 0 && std::bit_cast<float>(largest) < 0x1p-64f)
+            throw Error(ErrorKind::Numeric, name + ": largest magnitude " + number(std::bit_cast<float>(largest)) +
+                                                " is below 2^-64, too small to compare with 8-bit frames on the "
+                                                "device; give the plan float32 frames");
+    }
+    // Backgrounds change rarely: convert to planar float here, once, on the
+    // host. A float32 plan keeps them here and writes the device copy at each
+    // run's scale.
+    const bool scaled = !im.background_host.empty();
+    float* dst = (scaled ? im.background_host.data() : static_cast<float*>(im.background.mapped())) +
+                 std::size_t(sensor) * pixels * C;
     for (std::size_t p = 0; p < pixels; ++p)
         for (std::size_t c = 0; c < C; ++c)
             dst[c * pixels + p] = bg.type == PixelType::U8
                                       ? float(static_cast<const std::uint8_t*>(bg.data)[p * C + c]) / 255.0f
                                       : static_cast<const float*>(bg.data)[p * C + c];
+    if (scaled) {
+        im.background_max[std::size_t(sensor)] = vk::max_abs(dst, pixels * C);
+        im.background_exponent[std::size_t(sensor)] = std::nullopt;
+    }
     im.background_set[std::size_t(sensor)] = true;
 }
+
+namespace {
+
+// Float32 frames into the upload buffer, sensor by sensor: copied while their
+// largest magnitude is found, and where that lies outside the ordinary band,
+// copied again times 2^-e (vk/magnitude.hpp). The scales, Brovey's thresholds
+// and the backgrounds' device copies change only once every sensor passed, so
+// a run that throws here leaves the last run's results readable.
+void upload_f32(Plan::Impl& im, std::span<const FrameView> frames) {
+    const PlanConfig& c = im.cfg;
+    const std::size_t S = std::size_t(c.sensors), K = std::size_t(c.frames);
+    const std::size_t n = std::size_t(c.height) * c.width * c.channels;
+    float* upload = static_cast<float*>(im.upload.mapped());
+    for (std::size_t s = 0; s < S; ++s) {
+        float* dst = upload + s * K * n;
+        std::uint32_t largest = 0;
+        for (std::size_t k = 0; k < K; ++k)
+            largest = std::max(largest, vk::copy_magnitude(dst + k * n, frames[s * K + k].data, n));
+        if (largest == 0)  // black, or nothing but the smallest subnormals
+            for (std::size_t k = 0; k < K; ++k) largest = std::max(largest, vk::max_abs(frames[s * K + k].data, n));
+        if (largest >= vk::kNonFinite)
+            for (std::size_t k = 0; k < K; ++k) {
+                const std::size_t i = vk::first_non_finite(frames[s * K + k].data, n);
+                if (i < n)
+                    throw Error(ErrorKind::Numeric, "frame " + std::to_string(k) + " of sensor " + std::to_string(s) +
+                                                        ": " + non_finite_at(c, vk::load(frames[s * K + k].data, i), i));
+            }
+        const std::uint32_t background = im.background_max.empty() ? 0 : im.background_max[s];
+        const std::optional<int> e = vk::choose_exponent(largest, background, c.fusion.method == Method::Brovey);
+        if (!e) {
+            std::uint32_t exact = 0;
+            for (std::size_t k = 0; k < K; ++k) exact = std::max(exact, vk::max_abs(frames[s * K + k].data, n));
+            throw Error(ErrorKind::Numeric, "sensor " + std::to_string(s) + ": frames of largest magnitude " +
+                                                number(std::bit_cast<float>(exact)) + " and a background of " +
+                                                number(std::bit_cast<float>(background)) +
+                                                " lie too far apart to share one float32 scale on the device");
+        }
+        if (*e != 0)
+            for (std::size_t k = 0; k < K; ++k) vk::copy_scaled(dst + k * n, frames[s * K + k].data, n, *e);
+        im.next_exponent[s] = *e;
+    }
+    for (std::size_t s = 0; s < S; ++s) {
+        const int e = im.next_exponent[s];
+        im.exponent[s] = e;
+        if (im.thresholds.mapped()) static_cast<float*>(im.thresholds.mapped())[s] = vk::brovey_threshold(e);
+        if (!im.background_host.empty() && im.background_exponent[s] != e) {
+            vk::copy_scaled(static_cast<float*>(im.background.mapped()) + s * n, im.background_host.data() + s * n, n, e);
+            im.background_exponent[s] = e;
+        }
+    }
+}
+
+}  // namespace
 
 void Plan::run(std::span<const FrameView> frames) {
     auto& im = *impl_;
@@ -170,10 +287,14 @@ void Plan::run(std::span<const FrameView> frames) {
         for (int s = 0; s < c.sensors; ++s)
             if (!im.background_set[std::size_t(s)])
                 throw Error(ErrorKind::InvalidArgument, "plan run: no background set for sensor " + std::to_string(s));
-    auto* dst = static_cast<std::uint8_t*>(im.upload.mapped());
-    for (const auto& f : frames) {
-        std::memcpy(dst, f.data, f.bytes());
-        dst += f.bytes();
+    if (c.input == PixelType::F32) {
+        upload_f32(im, frames);
+    } else {  // 8-bit frames, in [0, 1] on the device: as they are
+        auto* dst = static_cast<std::uint8_t*>(im.upload.mapped());
+        for (const auto& f : frames) {
+            std::memcpy(dst, f.data, f.bytes());
+            dst += f.bytes();
+        }
     }
     im.submit_and_wait();
     im.has_run = true;
@@ -188,10 +309,21 @@ const Image& Plan::fused(int sensor) const {
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
     auto& img = im.fused[std::size_t(sensor)];
     if (!im.fused_fresh[std::size_t(sensor)]) {
-        img = Image(im.cfg.height, im.cfg.width, im.cfg.channels);
-        const float* src = static_cast<const float*>(im.readback.mapped()) + std::size_t(sensor) * img.size();
-        check_fp16_range(im.cfg, sensor, std::span(src, img.size()));
-        std::memcpy(img.data.data(), src, img.size() * sizeof(float));
+        Image out(im.cfg.height, im.cfg.width, im.cfg.channels);
+        const float* src = static_cast<const float*>(im.readback.mapped()) + std::size_t(sensor) * out.size();
+        const int e = im.exponent[std::size_t(sensor)];
+        if (e == 0) {  // copied and checked in one pass
+            if (vk::copy_magnitude(out.data.data(), src, out.size()) >= vk::kNonFinite)
+                check_device_results(im.cfg, sensor, std::span(src, out.size()), "the fused image");
+        } else {  // back to the frames' scale: exact, unless it leaves float32's range
+            check_device_results(im.cfg, sensor, std::span(src, out.size()), "the fused image");
+            const std::size_t i = vk::scale_back(out.data.data(), src, out.size(), e);
+            if (i < out.size())
+                throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) + ": fused value " +
+                                                    number(std::ldexp(double(src[i]), e)) + " at " +
+                                                    position(im.cfg, i) + " lies beyond float32's range");
+        }
+        img = std::move(out);
         im.fused_fresh[std::size_t(sensor)] = true;
     }
     return img;
@@ -207,14 +339,17 @@ Metrics Plan::metrics(int sensor) const {
                                                     im.totals_offset);
     const float* t0 = t + std::size_t(sensor) * 4;
     const float* t1 = t + std::size_t(im.cfg.sensors) * 4 + std::size_t(sensor) * 4;
-    check_fp16_range(im.cfg, sensor, std::span(t0, 4));
-    check_fp16_range(im.cfg, sensor, std::span(t1, 4));
+    // Checked before use: std::max(0.0, NaN) below would make a NaN sum a
+    // contrast of 0.
+    check_device_results(im.cfg, sensor, std::span(t0, 4), "a metric sum");
+    check_device_results(im.cfg, sensor, std::span(t1, 4), "a metric sum");
     const double n = double(im.cfg.height) * im.cfg.width;
+    const int e = im.exponent[std::size_t(sensor)];  // every metric scales with the frames
     Metrics m;
-    m.sharpness = double(t0[0]) / n;
+    m.sharpness = std::ldexp(double(t0[0]) / n, e);
     // t1[0] sums squared deviations multiplied by t1[1], a power of two (metrics_partial.comp).
-    m.contrast = std::sqrt(std::max(0.0, double(t1[0])) / n) / double(t1[1]);
-    if (im.cfg.background_diff) m.background_diff = double(t0[2]) / (n * im.cfg.channels);
+    m.contrast = std::ldexp(std::sqrt(std::max(0.0, double(t1[0])) / n) / double(t1[1]), e);
+    if (im.cfg.background_diff) m.background_diff = std::ldexp(double(t0[2]) / (n * im.cfg.channels), e);
     return m;
 }
 

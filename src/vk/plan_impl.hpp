@@ -1,5 +1,6 @@
 // Plan::Impl and the pieces the per-method graph builders share.
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -16,6 +17,10 @@ struct GraphBuilder {
     const PlanConfig& cfg;
     Recorder& rec;
     std::vector<Buffer>& buffers;  // owned by the plan; every intermediate lives here
+    // Brovey in a float32-input plan: per sensor, the dark threshold in that
+    // sensor's scaled domain (vk/magnitude.hpp), host-written every run; 0
+    // otherwise (8-bit frames are never scaled: the kernel's own 1e-6).
+    VkDeviceAddress brovey_thresholds = 0;
 
     std::uint32_t planes_in() const { return std::uint32_t(cfg.sensors * cfg.frames * cfg.channels); }
     std::uint32_t planes_out() const { return std::uint32_t(cfg.sensors * cfg.channels); }
@@ -63,6 +68,7 @@ struct Plan::Impl {
     vk::Buffer upload;      // frames as given, host-written each run
     vk::Buffer background;  // planar float backgrounds, host-written by set_background
     vk::Buffer readback;    // fused HWC images, then metric totals
+    vk::Buffer thresholds;  // Brovey, float32 input: GraphBuilder::brovey_thresholds
     std::vector<vk::Buffer> buffers;
     // After the buffers, so it is released (and a pending submit waited out) first.
     std::optional<vk::CommandSlot> slot;
@@ -73,6 +79,16 @@ struct Plan::Impl {
     std::uint64_t submits = 0;
     std::vector<Image> fused;  // filled lazily from readback after a run
     std::vector<bool> fused_fresh;
+    // Magnitudes (vk/magnitude.hpp). Float32 frames of sensor s went to the
+    // device times 2^-exponent[s]; its results are multiplied back.
+    std::vector<int> exponent;
+    std::vector<int> next_exponent;  // run()'s choice, kept only once every sensor passed
+    // Float32 plans with background_diff: the backgrounds as given (planar),
+    // their largest magnitude (float bits), and the exponent the device copy
+    // holds them at (nullopt: not written since set_background).
+    std::vector<float> background_host;
+    std::vector<std::uint32_t> background_max;
+    std::vector<std::optional<int>> background_exponent;
 
     Impl(Context::Impl& context, const PlanConfig& config);
     Impl(const Impl&) = delete;
