@@ -117,7 +117,7 @@ void write_json(const std::string& path, const std::vector<CellResult>& results)
     Value::Array cells;
     for (const auto& r : results) cells.push_back(cell_json(r));
     const std::string text = json::write(Value(std::move(cells))) + "\n";
-    io::write_atomically(path, [&](std::FILE* f) { std::fwrite(text.data(), 1, text.size(), f); });
+    io::write_atomically(path, [&](std::FILE* f) { io::write_all(f, text, path); });
 }
 
 }  // namespace vkfuse::bench

@@ -186,7 +186,7 @@ void write_plot(const std::string& path, const std::vector<CellResult>& results,
         }
     }
     svg += "</svg>\n";
-    io::write_atomically(path, [&](std::FILE* out) { std::fwrite(svg.data(), 1, svg.size(), out); });
+    io::write_atomically(path, [&](std::FILE* out) { io::write_all(out, svg, path); });
 }
 
 }  // namespace vkfuse::bench
