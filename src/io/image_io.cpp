@@ -7,6 +7,7 @@
 
 #include "io/atomic_write.hpp"
 #include "io/file_bytes.hpp"
+#include "io/image_header.hpp"
 #include "io/io_error.hpp"
 #include "io/npy.hpp"
 #include "io/png.hpp"
@@ -45,10 +46,16 @@ void check_writable(const std::string& path, const Image& image, Format format) 
 
 Image read_image(const std::string& path) {
     Format format = format_of(path);
-    std::vector<unsigned char> file = read_file_bytes(path);
-    Image image = format == Format::Png ? decode_png(file, path) : decode_npy(file, path);
+    InputFile file(path);
+    Image image = format == Format::Png ? read_png(file) : read_npy(file);
     check_finite(image, path);
     return image;
+}
+
+ImageHeader read_image_header(const std::string& path) {
+    Format format = format_of(path);
+    InputFile file(path);
+    return format == Format::Png ? read_png_header(file) : read_npy_header(file);
 }
 
 void write_image(const std::string& path, const Image& image) {

@@ -1,5 +1,6 @@
 #include "io/npy_header.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <cstring>
@@ -160,27 +161,44 @@ std::string_view type_name(NpyKind kind) {
     return "?";
 }
 
-NpyHeader parse_npy_header(const std::vector<unsigned char>& file, const std::string& path) {
-    if (file.empty()) fail(ErrorKind::Format, path, "empty file");
-    if (file.size() < 10 || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0)
+std::size_t npy_header_size(const unsigned char* prefix, std::size_t prefix_size, std::uint64_t file_size,
+                            const std::string& path) {
+    if (file_size == 0) fail(ErrorKind::Format, path, "empty file");
+    if (prefix_size < 10 || std::memcmp(prefix, kMagic, sizeof kMagic) != 0)
         fail(ErrorKind::Format, path, "not a .npy file");
-    int major = file[6], minor = file[7];
+    int major = prefix[6], minor = prefix[7];
     if (major < 1 || major > 3 || minor != 0)
         fail(ErrorKind::Format, path,
              "unsupported .npy version " + std::to_string(major) + "." + std::to_string(minor));
     // Version 1.0 stores the header length in 2 bytes, 2.0 and 3.0 in 4.
     std::size_t length_bytes = major == 1 ? 2 : 4;
-    if (file.size() < 8 + length_bytes) fail(ErrorKind::Format, path, "truncated .npy header");
-    std::size_t header_length = little_endian(file.data() + 8, int(length_bytes));
+    if (prefix_size < 8 + length_bytes) fail(ErrorKind::Format, path, "truncated .npy header");
+    std::uint64_t header_length = little_endian(prefix + 8, int(length_bytes));
     std::size_t offset = 8 + length_bytes;
-    if (header_length > file.size() - offset)
+    if (header_length > file_size - offset)
         fail(ErrorKind::Format, path,
              "truncated .npy header: it claims " + std::to_string(header_length) + " bytes but the file has " +
-                 std::to_string(file.size() - offset));
-    std::string_view text(reinterpret_cast<const char*>(file.data()) + offset, header_length);
+                 std::to_string(file_size - offset));
+    if (header_length > kMaxNpyHeaderBytes)
+        fail(ErrorKind::Format, path,
+             "corrupt .npy header: it claims " + std::to_string(header_length) + " bytes, more than the " +
+                 std::to_string(kMaxNpyHeaderBytes) + " a header of float or integer images takes");
+    return offset + std::size_t(header_length);
+}
+
+NpyHeader parse_npy_header(const unsigned char* data, std::size_t size, std::uint64_t file_size,
+                           const std::string& path) {
+    const std::size_t total = npy_header_size(data, std::min<std::size_t>(size, 12), file_size, path);
+    if (size < total) fail(ErrorKind::Format, path, "truncated .npy header");
+    const std::size_t offset = data[6] == 1 ? 10 : 12;
+    std::string_view text(reinterpret_cast<const char*>(data) + offset, total - offset);
     NpyHeader header = DictReader(text, path).read();
-    header.data_offset = offset + header_length;
+    header.data_offset = total;
     return header;
+}
+
+NpyHeader parse_npy_header(const std::vector<unsigned char>& file, const std::string& path) {
+    return parse_npy_header(file.data(), file.size(), file.size(), path);
 }
 
 std::string format_npy_header(const std::vector<std::uint64_t>& shape) {

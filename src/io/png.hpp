@@ -4,14 +4,26 @@
 #include <string>
 #include <vector>
 
+#include "io/image_header.hpp"
 #include "vkfuse/image.hpp"
 
 namespace vkfuse::io {
+
+class InputFile;
 
 // Decodes a whole PNG file held in memory: any color type and bit depth,
 // palette and low bit depths expanded, alpha dropped, v/255 or v/65535.
 // Throws Error(Format) "path: <problem>" for anything that is not a valid PNG.
 Image decode_png(const std::vector<unsigned char>& file, const std::string& path);
+
+// The same from a file, streamed through libpng: the signature and the chunks
+// up to the image data are read and checked (dimensions, a size the file can
+// hold) before anything is allocated for pixels; non-interlaced rows are
+// converted one at a time. Reads at most what an image of the header's size
+// can occupy (rows stored uncompressed, twice, plus 128 MiB of metadata) and
+// nothing after IEND, so a huge file behind a small header is not read.
+ImageHeader read_png_header(InputFile& file);
+Image read_png(InputFile& file);
 
 // Writes image (C = 1 or 3, finite) as an 8-bit gray or RGB PNG, each value
 // clamped to [0, 1] and rounded: round(v * 255). Throws Error naming path.
