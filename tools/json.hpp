@@ -5,7 +5,8 @@
 
 namespace vkfuse::cli {
 
-// A quoted JSON string: '"' and '\' escaped, control characters as \uXXXX.
+// A quoted JSON string: '"' and '\' escaped, control characters as \uXXXX,
+// bytes that are not well-formed UTF-8 as \ufffd (json::quote).
 std::string json_string(std::string_view text);
 
 // %.17g, which round-trips every double; JSON has no NaN or Inf, so those are null.

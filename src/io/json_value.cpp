@@ -241,12 +241,43 @@ void write_to(std::string& out, const Value& v, int indent) {
     out += v.is_array() ? ']' : '}';
 }
 
+// The length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no
+// overlong forms, no surrogates, nothing above U+10FFFF), or 0.
+std::size_t utf8_sequence(std::string_view text, std::size_t i) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char c = byte(i);
+    const std::size_t n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    if (n == 0) return 0;  // a continuation byte, C0/C1 (overlong), F5..FF
+    // The second byte's range excludes overlong forms (E0, F0), surrogates
+    // (ED) and code points above U+10FFFF (F4).
+    const unsigned char lo = c == 0xE0 ? 0xA0 : c == 0xF0 ? 0x90 : 0x80;
+    const unsigned char hi = c == 0xED ? 0x9F : c == 0xF4 ? 0x8F : 0xBF;
+    if (text.size() - i < n || byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+    for (std::size_t k = 2; k < n; ++k)
+        if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+    return n;
+}
+
 }  // namespace
 
 std::string quote(std::string_view text) {
     std::string out = "\"";
-    for (char ch : text) {
+    for (std::size_t i = 0; i < text.size();) {
+        const char ch = text[i];
         const unsigned char c = static_cast<unsigned char>(ch);
+        if (c >= 0x80) {
+            // Well-formed UTF-8 passes through; each byte of anything else
+            // (a Latin-1 file name) becomes U+FFFD, so the output stays valid.
+            const std::size_t n = utf8_sequence(text, i);
+            if (n == 0) {
+                out += "\\ufffd";
+                ++i;
+            } else {
+                out.append(text.substr(i, n));
+                i += n;
+            }
+            continue;
+        }
         if (c == '"' || c == '\\') {
             out += '\\';
             out += ch;
@@ -257,6 +288,7 @@ std::string quote(std::string_view text) {
         } else {
             out += ch;
         }
+        ++i;
     }
     return out + "\"";
 }

@@ -52,7 +52,10 @@ private:
 Value parse(std::string_view text, const std::string& source);
 
 // text as a JSON string: quotes, '"' and '\' escaped, control characters as
-// \uXXXX; bytes >= 0x80 pass through, so UTF-8 stays UTF-8.
+// \uXXXX; well-formed UTF-8 passes through, and every byte that is not part
+// of a well-formed sequence (a Latin-1 file name, a cut-off character) is
+// written as \ufffd, so the result is always valid JSON (and valid UTF-8).
+// That is lossy by design: such a name cannot be spelled in JSON at all.
 std::string quote(std::string_view text);
 
 // Two-space indentation; an array or object holding only scalars stays on one
