@@ -1,10 +1,13 @@
 // vkfuse fuse: read K frames, fuse them on the chosen backend, write one image.
+#include <new>
 #include <span>
 
 #include "backend.hpp"
 #include "commands.hpp"
 #include "fusion_options.hpp"
 #include "inputs.hpp"
+#include "io/interrupt_cleanup.hpp"
+#include "memory_check.hpp"
 #include "vkfuse/io.hpp"
 #include "vkfuse/plan.hpp"
 #include "vkfuse/reference.hpp"
@@ -69,14 +72,29 @@ int run(const Args& args) {
     if (args.operands().empty()) args.usage_error("no input images");
     io::check_image_extension(output);  // fail before the work, not after it
 
-    std::vector<Input> inputs = read_inputs(args.operands());
-    for (const Input& in : inputs) require_same_shape(in, inputs.front());
-    const Image& first = inputs.front().image;
-    validate(spec, first.height, first.width, first.channels, int(inputs.size()));
+    // Headers first: a bad input, mismatched shapes, an impossible level count
+    // or more memory than the process can take is reported before any pixel
+    // is decoded.
+    const std::vector<InputHeader> headers = read_headers(args.operands());
+    for (const InputHeader& in : headers) require_same_shape(in, headers.front());
+    const io::ImageHeader& shape = headers.front().header;
+    validate(spec, shape.height, shape.width, shape.channels, int(headers.size()));
+    std::vector<io::ImageHeader> shapes;
+    for (const InputHeader& in : headers) shapes.push_back(in.header);
+    const std::uint64_t need = fuse_memory_need(shapes, spec.method, backend);
+    require_memory(args.operands(), "fusing", need);
 
-    std::optional<Context> context = open_backend(backend);
-    Image fused = context ? fuse_on_vulkan(*context, spec, inputs) : fuse_on_cpu(spec, inputs);
-    io::write_image(output, fused);
+    // A SIGINT/SIGTERM while the output is written leaves no temporary behind.
+    io::install_interrupt_cleanup();
+    try {
+        std::vector<Input> inputs = read_inputs(args.operands());
+        for (const Input& in : inputs) require_same_shape(in, inputs.front());  // a file replaced meanwhile
+        std::optional<Context> context = open_backend(backend);
+        Image fused = context ? fuse_on_vulkan(*context, spec, inputs) : fuse_on_cpu(spec, inputs);
+        io::write_image(output, fused);
+    } catch (const std::bad_alloc&) {
+        out_of_memory(args.operands(), "fusing", need);
+    }
     return 0;
 }
 

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <map>
+#include <new>
 #include <optional>
 #include <system_error>
 
@@ -10,6 +11,7 @@
 #include "commands.hpp"
 #include "inputs.hpp"
 #include "json.hpp"
+#include "memory_check.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/plan.hpp"
 #include "vkfuse/reference.hpp"
@@ -86,17 +88,38 @@ std::string json_line(const std::string& path, const Metrics& m) {
 int run(const Args& args) {
     BackendChoice backend = parse_backend(args.value("--backend").value_or("auto"));
     if (args.operands().empty()) args.usage_error("no input images");
-    std::vector<Input> inputs = read_inputs(args.operands());
-    std::optional<Input> background;
-    if (auto path = args.value("--background")) background = read_inputs({*path}).front();
-    if (background)
-        for (const Input& in : inputs) require_same_shape(in, *background, "the background ");
+    // Headers first: a bad input, a background of another shape or more
+    // memory than the process can take is reported before any pixel is decoded.
+    const std::vector<InputHeader> headers = read_headers(args.operands());
+    std::optional<InputHeader> background_header;
+    std::vector<std::string> everything = args.operands();
+    if (auto path = args.value("--background")) {
+        background_header = read_headers({*path}).front();
+        everything.push_back(*path);
+    }
+    if (background_header)
+        for (const InputHeader& in : headers) require_same_shape(in, *background_header, "the background ");
+    std::vector<io::ImageHeader> shapes;
+    for (const InputHeader& in : headers) shapes.push_back(in.header);
+    const std::uint64_t need =
+        metrics_memory_need(shapes, background_header ? &background_header->header : nullptr, backend);
+    require_memory(everything, "scoring", need);
 
-    std::optional<Context> context = open_backend(backend);
-    const Input* bg = background ? &*background : nullptr;
-    std::vector<Metrics> metrics = context ? metrics_on_vulkan(*context, inputs, bg) : metrics_on_cpu(inputs, bg);
     std::string text;
-    for (std::size_t i = 0; i < inputs.size(); ++i) text += json_line(inputs[i].path, metrics[i]);
+    try {
+        std::vector<Input> inputs = read_inputs(args.operands());
+        std::optional<Input> background;
+        if (background_header) background = read_inputs({background_header->path}).front();
+        if (background)
+            for (const Input& in : inputs) require_same_shape(in, *background, "the background ");
+
+        std::optional<Context> context = open_backend(backend);
+        const Input* bg = background ? &*background : nullptr;
+        std::vector<Metrics> metrics = context ? metrics_on_vulkan(*context, inputs, bg) : metrics_on_cpu(inputs, bg);
+        for (std::size_t i = 0; i < inputs.size(); ++i) text += json_line(inputs[i].path, metrics[i]);
+    } catch (const std::bad_alloc&) {
+        out_of_memory(everything, "scoring", need);
+    }
     // Printed only once every input has been scored: a failure leaves stdout empty.
     if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
         throw Error(ErrorKind::Io, "stdout: cannot write: " + std::error_code(errno, std::generic_category()).message());
