@@ -1,6 +1,8 @@
 #include "io/atomic_write.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -55,6 +57,26 @@ std::string temporary_name() {
     for (unsigned char r : random) name += kAlphabet[r % 36];
     return name;
 }
+
+// Holds SIGINT, SIGTERM and SIGHUP back while a temporary name is created and
+// registered (or released), so the handler never sees a name that is
+// registered but not ours (a collision with another process's file) nor a
+// file of ours that is not registered yet.
+class SignalsHeld {
+public:
+    SignalsHeld() {
+        sigset_t set;
+        sigemptyset(&set);
+        for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&set, sig);
+        ::pthread_sigmask(SIG_BLOCK, &set, &old_);
+    }
+    ~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+    SignalsHeld(const SignalsHeld&) = delete;
+    SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+private:
+    sigset_t old_;
+};
 
 // path split into the directory to open and the name inside it.
 struct Place {
@@ -141,16 +163,18 @@ public:
     void open_named() {
         for (int attempt = 0; attempt < 100; ++attempt) {
             std::string name = temporary_name();
-            const int slot = register_temporary(dirfd_, name);
-            const int fd = ::openat(dirfd_, name.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC | O_NOCTTY, 0666);
+            int fd, err;
+            {
+                SignalsHeld held;
+                fd = ::openat(dirfd_, name.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC | O_NOCTTY, 0666);
+                err = errno;
+                if (fd >= 0) slot_ = register_temporary(dirfd_, name);
+            }
             if (fd >= 0) {
                 fd_.reset(fd);
                 name_ = std::move(name);
-                slot_ = slot;
                 return;
             }
-            const int err = errno;
-            release_temporary(slot);
             if (err != EEXIST) fail(ErrorKind::Io, path_, "cannot create a file in its directory: " + system_message(err));
         }
         fail(ErrorKind::Io, path_, "cannot create a file in its directory: no free temporary name");
@@ -181,6 +205,7 @@ public:
     }
 
     void rename_to(const std::string& final_name) {
+        SignalsHeld held;  // renamed and released as one step for the handler
         if (::renameat(dirfd_, name_.c_str(), dirfd_, final_name.c_str()) != 0)
             fail(ErrorKind::Io, path_, "cannot replace: " + system_message(errno));
         forget_name(false);
@@ -193,14 +218,17 @@ private:
         const std::string source = "/proc/self/fd/" + std::to_string(fd);
         for (int attempt = 0; attempt < 100; ++attempt) {
             std::string name = temporary_name();
-            const int slot = register_temporary(dirfd_, name);
-            if (::linkat(AT_FDCWD, source.c_str(), dirfd_, name.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+            int linked, err;
+            {
+                SignalsHeld held;
+                linked = ::linkat(AT_FDCWD, source.c_str(), dirfd_, name.c_str(), AT_SYMLINK_FOLLOW);
+                err = errno;
+                if (linked == 0) slot_ = register_temporary(dirfd_, name);
+            }
+            if (linked == 0) {
                 name_ = std::move(name);
-                slot_ = slot;
                 return;
             }
-            const int err = errno;
-            release_temporary(slot);
             if (err != EEXIST) fail(ErrorKind::Io, path_, "cannot create a file in its directory: " + system_message(err));
         }
         fail(ErrorKind::Io, path_, "cannot create a file in its directory: no free temporary name");
@@ -208,6 +236,7 @@ private:
 
     void forget_name(bool unlink) {
         if (name_.empty()) return;
+        SignalsHeld held;
         if (unlink) ::unlinkat(dirfd_, name_.c_str(), 0);
         release_temporary(slot_);
         name_.clear();
