@@ -105,8 +105,14 @@ bool is_run_output_entry(const std::string& name) {
     return name == kMetricsName || name == kSummaryName || name == kFusedName || name == kSideBySideName;
 }
 
+// Fused frames waiting for the PNG writer: a few cycles of 16 VGA sensors.
+constexpr std::size_t kMaxPendingImageBytes = std::size_t(256) << 20;
+
 RunOutput::RunOutput(std::string directory, std::string object, std::size_t slot)
-    : directory_(std::move(directory)), object_(std::move(object)), static_slot_(slot) {
+    : directory_(std::move(directory)),
+      object_(std::move(object)),
+      static_slot_(slot),
+      fused_pngs_(kMaxPendingImageBytes) {
     io::check_plain_component(object_, "object");
     metrics_fd_ = create_new((fs::path(directory_) / kMetricsName).string());
 }
@@ -123,7 +129,7 @@ void RunOutput::write(const CycleResult& cycle) {
         io::check_plain_component(s.serial, "serial");
         const fs::path dir = fs::path(directory_) / kFusedName / s.serial;
         make_directory(dir);
-        io::write_image((dir / cycle_name(cycle.cycle)).string(), *s.fused);
+        fused_pngs_.push((dir / cycle_name(cycle.cycle)).string(), *s.fused);
         auto it = std::find_if(last_.begin(), last_.end(), [&](const auto& e) { return e.first == s.serial; });
         if (it == last_.end()) it = last_.insert(last_.end(), {s.serial, {}});
         it->second = {s.frames, *s.fused};
@@ -131,6 +137,7 @@ void RunOutput::write(const CycleResult& cycle) {
 }
 
 void RunOutput::finish(const std::string& summary_json) {
+    fused_pngs_.drain();
     const fs::path dir = fs::path(directory_) / kSideBySideName;
     for (const auto& [serial, last] : last_) {
         make_directory(dir);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "image_write_queue.hpp"
 #include "vkfuse/illumination.hpp"
 #include "vkfuse/rig.hpp"
 
@@ -34,6 +35,8 @@ public:
     RunOutput(const RunOutput&) = delete;
     RunOutput& operator=(const RunOutput&) = delete;
 
+    // The cycle's metric lines now; its fused PNGs on a writer thread (an
+    // error there fails a later write() or finish()).
     void write(const CycleResult& cycle);
     // Side-by-side pictures and the summary; closes metrics.jsonl.
     void finish(const std::string& summary_json);
@@ -47,6 +50,7 @@ private:
     std::size_t static_slot_;
     int metrics_fd_ = -1;
     std::vector<std::pair<std::string, Last>> last_;  // by serial, in sensor order
+    ImageWriteQueue fused_pngs_;  // last: stopped before anything it writes about goes
 };
 
 }  // namespace vkfuse::cli
