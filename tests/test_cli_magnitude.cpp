@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,24 @@ TEST(CliMagnitude, VulkanFusionOfHugeValuesMatchesTheCpu) {
             EXPECT_EQ(non_finite, 0u);
             EXPECT_LE(max_abs_diff(gpu, convert<double>(cpu)), 1e-5 * a);
         }
+    }
+}
+
+// Where the fused image itself leaves float32's range (a Laplacian of frames
+// at 3e38 overshoots FLT_MAX), both backends refuse with one line: neither
+// writes an Inf into the output.
+TEST(CliMagnitude, FusionBeyondFloatRangeIsAnErrorOnBothBackends) {
+    TempDir dir;
+    const std::vector<std::string> inputs = write_frames(dir, 3e38f);
+    for (const std::string backend : {"cpu", "vulkan"}) {
+        const std::string out = dir.file(backend + ".npy");
+        std::vector<std::string> args{"fuse", "--backend", backend, "--method", "laplacian", "-o", out};
+        args.insert(args.end(), inputs.begin(), inputs.end());
+        const CliResult r = run_cli(args);
+        EXPECT_EQ(r.status, 2) << backend;
+        EXPECT_EQ(r.err_lines().size(), 1u) << r.err;
+        EXPECT_NE(r.err.find("lies beyond float32's range"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << backend;
     }
 }
 

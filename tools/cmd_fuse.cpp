@@ -1,4 +1,7 @@
 // vkfuse fuse: read K frames, fuse them on the chosen backend, write one image.
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <new>
 #include <span>
 
@@ -8,6 +11,7 @@
 #include "inputs.hpp"
 #include "io/interrupt_cleanup.hpp"
 #include "memory_check.hpp"
+#include "vkfuse/error.hpp"
 #include "vkfuse/io.hpp"
 #include "vkfuse/plan.hpp"
 #include "vkfuse/reference.hpp"
@@ -37,11 +41,25 @@ constexpr CommandSpec kSpec{
     "vkfuse fuse --method wavelet --levels 3 --wavelet bior4.4 -o fused.npy red.png green.png blue.png",
 };
 
+// The reference fuses in double; a result past float32's range (pyramids and
+// wavelets overshoot inputs near FLT_MAX) cannot be stored and is an error,
+// as on the Vulkan path, never an Inf in the output.
 Image fuse_on_cpu(const FusionSpec& spec, const std::vector<Input>& inputs) {
     std::vector<ImageD> frames;
     frames.reserve(inputs.size());
     for (const Input& in : inputs) frames.push_back(convert<double>(in.image));
-    return convert<float>(fuse_reference(frames, spec));
+    const ImageD fused = fuse_reference(frames, spec);
+    for (std::size_t i = 0; i < fused.data.size(); ++i)
+        if (std::abs(fused.data[i]) > double(std::numeric_limits<float>::max())) {
+            const std::size_t C = std::size_t(fused.channels), pixel = i / C;
+            char value[32];
+            std::snprintf(value, sizeof value, "%.9g", fused.data[i]);
+            throw Error(ErrorKind::Numeric, "fused value " + std::string(value) + " at row " +
+                                                std::to_string(pixel / std::size_t(fused.width)) + ", column " +
+                                                std::to_string(pixel % std::size_t(fused.width)) + ", channel " +
+                                                std::to_string(i % C) + " lies beyond float32's range");
+        }
+    return convert<float>(fused);
 }
 
 Image fuse_on_vulkan(Context& context, const FusionSpec& spec, const std::vector<Input>& inputs) {

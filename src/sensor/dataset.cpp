@@ -41,7 +41,10 @@ std::vector<std::string> Dataset::objects() const {
 
 Dataset read_dataset(const std::string& directory) {
     const std::string file = io::resolve_inside(directory, sensor::kManifestName);
-    const std::vector<unsigned char> bytes = io::read_file_bytes(file);
+    // A manifest lists frames at ~150 bytes each: 256 MiB is over a million
+    // frames, and keeps a hostile one from choosing how much memory we take.
+    constexpr std::uint64_t kMaxManifestBytes = std::uint64_t(256) << 20;
+    const std::vector<unsigned char> bytes = io::read_file_bytes(file, kMaxManifestBytes);
     const json::Value manifest =
         json::parse(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file);
     Dataset d = sensor::dataset_from_json(manifest, file, directory);
