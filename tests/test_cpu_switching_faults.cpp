@@ -122,7 +122,7 @@ RunResult run_cycles(const SensorSetup& setup, UnreliableSensor::Fault fault, co
         for (std::size_t k = 0; k < seq.size(); ++k) {
             const SimFrameTruth t = r.truth->truth(frames[k].index);
             EXPECT_FALSE(t.mixed) << "cycle " << c << " slot " << k << " frame " << frames[k].index;
-            EXPECT_EQ(t.lit_by, seq[k]) << "cycle " << c << " slot " << k << " frame " << frames[k].index;
+            EXPECT_EQ(t.lit_by.to_string(), seq[k].to_string()) << "cycle " << c << " slot " << k << " frame " << frames[k].index;
             EXPECT_TRUE(used.insert(frames[k].index).second) << "frame " << frames[k].index << " placed twice";
             EXPECT_FALSE(sensor.lost().count(frames[k].index)) << "a lost frame was placed";
         }

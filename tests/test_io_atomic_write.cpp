@@ -27,6 +27,16 @@ std::string pattern(std::size_t n, unsigned seed) {
     return s;
 }
 
+// Byte-for-byte equality, reported by size and first difference (not by
+// printing tens of kilobytes).
+::testing::AssertionResult same_bytes(const std::string& got, const std::string& want) {
+    if (got == want) return ::testing::AssertionSuccess();
+    std::size_t at = 0;
+    while (at < got.size() && at < want.size() && got[at] == want[at]) ++at;
+    return ::testing::AssertionFailure() << got.size() << " bytes where " << want.size()
+                                         << " were expected, first difference at byte " << at;
+}
+
 void put(std::FILE* f, const std::string& bytes) {
     ASSERT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), f), bytes.size());
 }
@@ -51,7 +61,7 @@ TEST(AtomicWrite, BodyThatThrowsPartWayLeavesTheOldFileAndNothingElse) {
                                           throw BodyFailed();
                                       }),
                  BodyFailed);
-    EXPECT_EQ(read_bytes(path), old);
+    EXPECT_TRUE(same_bytes(read_bytes(path), old));
     EXPECT_EQ(dir.entries(), before);
 }
 
@@ -82,17 +92,17 @@ TEST(AtomicWrite, DestinationKeepsItsOldContentWhileTheBodyWrites) {
     write_bytes(path, old);
     int checks = 0;
     io::write_atomically(path, [&](std::FILE* f) {
-        EXPECT_EQ(read_bytes(path), old) << "before the body writes";
+        EXPECT_TRUE(same_bytes(read_bytes(path), old)) << "before the body writes";
         put(f, fresh.substr(0, 20000));
         std::fflush(f);
-        EXPECT_EQ(read_bytes(path), old) << "after part of the new content";
+        EXPECT_TRUE(same_bytes(read_bytes(path), old)) << "after part of the new content";
         put(f, fresh.substr(20000));
         std::fflush(f);
-        EXPECT_EQ(read_bytes(path), old) << "after all of the new content, before returning";
+        EXPECT_TRUE(same_bytes(read_bytes(path), old)) << "after all of the new content, before returning";
         ++checks;
     });
     EXPECT_EQ(checks, 1);
-    EXPECT_EQ(read_bytes(path), fresh);
+    EXPECT_TRUE(same_bytes(read_bytes(path), fresh));
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.npy"});
 }
 
@@ -106,7 +116,7 @@ TEST(AtomicWrite, NewFileAppearsOnlyWhenComplete) {
         std::fflush(f);
         EXPECT_FALSE(std::filesystem::exists(path)) << "visible before the body returned";
     });
-    EXPECT_EQ(read_bytes(path), fresh);
+    EXPECT_TRUE(same_bytes(read_bytes(path), fresh));
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"fresh.npy"});
 }
 
@@ -124,7 +134,7 @@ TEST(AtomicWrite, RepeatedFailuresKeepTheLastGoodWrite) {
                                               throw BodyFailed();  // not flushed: buffered bytes too
                                           }),
                      BodyFailed);
-    EXPECT_EQ(read_bytes(path), good);
+    EXPECT_TRUE(same_bytes(read_bytes(path), good));
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"log.json"});
 }
 
