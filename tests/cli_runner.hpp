@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -59,9 +60,11 @@ inline std::vector<char*> c_strings(std::vector<std::string>& words) {
 // Far above any command the tests run (the slowest takes seconds on lavapipe).
 inline constexpr std::chrono::seconds kCliTimeout{300};
 
-inline CliResult run_cli(const std::vector<std::string>& args, const std::vector<std::string>& extra_env = {}) {
-    TempDir capture;
-    std::string out_path = capture.file("stdout"), err_path = capture.file("stderr");
+// Starts vkfuse with args in the background, stdout and stderr to the files
+// named ("/dev/null" to drop), extra_env as in environment_with; returns its
+// pid for kill/waitpid.
+inline pid_t start_cli(const std::vector<std::string>& args, const std::string& out_path,
+                       const std::string& err_path, const std::vector<std::string>& extra_env = {}) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
@@ -72,9 +75,24 @@ inline CliResult run_cli(const std::vector<std::string>& args, const std::vector
     std::vector<std::string> env = environment_with(extra_env);
     std::vector<char*> argv = c_strings(words), envp = c_strings(env);
     pid_t pid = 0;
-    int rc = posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), envp.data());
+    const int rc = posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw std::runtime_error("cannot start " + std::string(VKFUSE_CLI));
+    return pid;
+}
+
+// The staging directory a running `vkfuse run` / `vkfuse sim` writes into
+// (".vkfuse-partial-*" beside its output), or "" while there is none.
+inline std::string staging_directory(const std::string& parent) {
+    for (const auto& e : std::filesystem::directory_iterator(parent))
+        if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0) return e.path().string();
+    return {};
+}
+
+inline CliResult run_cli(const std::vector<std::string>& args, const std::vector<std::string>& extra_env = {}) {
+    TempDir capture;
+    const std::string out_path = capture.file("stdout"), err_path = capture.file("stderr");
+    const pid_t pid = start_cli(args, out_path, err_path, extra_env);
     // A command that hangs (it once waited forever on a FIFO given as input)
     // is killed, so the test fails with a message instead of never ending.
     int wstatus = 0;

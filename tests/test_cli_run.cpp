@@ -97,23 +97,15 @@ TEST(CliRun, ReplayReproducesTheRecordedRun) {
 TEST(CliRun, InterruptFinishesTheCycleAndFlushes) {
     TempDir tmp;
     const std::string out = tmp.file("out");
-    std::vector<std::string> words{
-        VKFUSE_CLI, "run", "--virtual-clock", "--background-frames", "1", "--method", "brovey", "--out", out};
-    std::vector<char*> argv = c_strings(words);
-    pid_t pid = 0;
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, tmp.file("stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-    ASSERT_EQ(posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
+    const pid_t pid = start_cli({"run", "--virtual-clock", "--background-frames", "1", "--method", "brovey", "--out", out},
+                                tmp.file("stdout"), "/dev/null");
     // Wait until it has fused a few cycles (in the staging directory beside
     // --out, where a run writes until it ends), then interrupt.
     auto staged_lines = [&] {
-        for (const auto& e : fs::directory_iterator(tmp.file("")))
-            if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0 && fs::exists(e.path() / "metrics.jsonl"))
-                return lines_of(read_bytes((e.path() / "metrics.jsonl").string())).size();
-        return std::size_t(0);
+        const std::string staging = staging_directory(tmp.file(""));
+        return staging.empty() || !fs::exists(staging + "/metrics.jsonl")
+                   ? std::size_t(0)
+                   : lines_of(read_bytes(staging + "/metrics.jsonl")).size();
     };
     for (int i = 0; i < 600 && staged_lines() < 2; ++i) usleep(100000);
     kill(pid, SIGINT);

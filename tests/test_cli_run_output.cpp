@@ -238,25 +238,16 @@ TEST(CliRunUnlucky, HugeTimeoutDoesNotOverflow) {
 // hand finishes, --out appears whole and the --record dataset has its manifest.
 TEST(CliRunUnlucky, SigtermFinishesTheRunAndTheRecording) {
     TempDir tmp;
-    std::vector<std::string> words{VKFUSE_CLI, "run",   "--virtual-clock", "--background-frames", "1",
-                                   "--method", "brovey", "--backend",      "cpu",                 "--out",
-                                   tmp.file("o"), "--record", tmp.file("rec")};
-    std::vector<char*> argv = c_strings(words);
-    pid_t pid = 0;
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, tmp.file("stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-    ASSERT_EQ(posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
+    const pid_t pid = start_cli({"run", "--virtual-clock", "--background-frames", "1", "--method", "brovey",
+                                 "--backend", "cpu", "--out", tmp.file("o"), "--record", tmp.file("rec")},
+                                tmp.file("stdout"), "/dev/null");
     // The run writes into a hidden staging directory beside --out: wait for
     // two metrics lines there.
     auto staged_lines = [&] {
-        for (const auto& e : fs::directory_iterator(tmp.file("")))
-            if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0 &&
-                fs::exists(e.path() / "metrics.jsonl"))
-                return count_lines(read_bytes((e.path() / "metrics.jsonl").string()));
-        return std::size_t(0);
+        const std::string staging = staging_directory(tmp.file(""));
+        return staging.empty() || !fs::exists(staging + "/metrics.jsonl")
+                   ? std::size_t(0)
+                   : count_lines(read_bytes(staging + "/metrics.jsonl"));
     };
     for (int i = 0; i < 600 && staged_lines() < 2; ++i) usleep(100000);
     kill(pid, SIGTERM);
@@ -321,20 +312,13 @@ TEST(CliRunUnlucky, ReplayKeepsARecordedTimeoutInItsCycle) {
 // An interrupted `vkfuse sim` leaves neither the dataset nor its staging directory.
 TEST(CliRunUnlucky, InterruptedSimLeavesNothing) {
     TempDir tmp;
-    std::vector<std::string> words{VKFUSE_CLI, "sim", "--out", tmp.file("set"), "--frames", "4"};
-    std::vector<char*> argv = c_strings(words);
-    pid_t pid = 0;
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, tmp.file("stderr").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ASSERT_EQ(posix_spawn(&pid, VKFUSE_CLI, &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
+    const pid_t pid =
+        start_cli({"sim", "--out", tmp.file("set"), "--frames", "4"}, "/dev/null", tmp.file("stderr"));
     auto staged_files = [&] {
         std::size_t n = 0;
-        for (const auto& e : fs::directory_iterator(tmp.file("")))
-            if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0)
-                for (const auto& f : fs::recursive_directory_iterator(e.path())) n += f.is_regular_file();
+        const std::string staging = staging_directory(tmp.file(""));
+        if (!staging.empty())
+            for (const auto& f : fs::recursive_directory_iterator(staging)) n += f.is_regular_file();
         return n;
     };
     for (int i = 0; i < 600 && staged_files() < 3; ++i) usleep(50000);
