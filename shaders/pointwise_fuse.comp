@@ -40,10 +40,13 @@ void main() {
             total += max(v, 0.0);
             mean += v;
         }
-        // SPEC.md's s >= 1e-6. Float32 frames reach the device scaled by a
-        // power of two per sensor (vk/magnitude.hpp), and so does this
-        // threshold, written by the host every run; 8-bit frames never are.
-        float threshold = pc.scaled_threshold != 0u ? pc.thresholds.v[s] : 1e-6;
+        // SPEC.md's s >= 1e-6, with the threshold the smallest float >= 1e-6
+        // (0x358637BE; the literal 1e-6 rounds below it, to 9.99999997e-7,
+        // which would take the ratio for a sum that is below 1e-6). Float32
+        // frames reach the device scaled by a power of two per sensor
+        // (vk/magnitude.hpp), and so does this threshold, written by the host
+        // every run; 8-bit frames never are.
+        float threshold = pc.scaled_threshold != 0u ? pc.thresholds.v[s] : uintBitsToFloat(0x358637BEu);
         if (total >= threshold) {
             result = 0.0;
             for (uint k = 0u; k < pc.frames; ++k) {

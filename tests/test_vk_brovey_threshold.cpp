@@ -1,15 +1,12 @@
 // Brovey's dark-pixel threshold on the GPU (SPEC.md: s >= 1e-6 takes the
 // ratio sum_k (p_k / s) I_k, else the mean; p_k = max(I_k, 0)). The sums
 // below lie clearly on one side of 1e-6 in float32 as in double, plus the
-// float32 neighbours of 1e-6 (test_cpu_brovey_threshold.cpp pins the exact
-// double boundary). A negative third frame makes the mean (about -0.083) far
-// from the ratio (about s): a pixel on the wrong side is off by 0.08, where
-// the tolerance is 1e-5.
-//
-// Not asserted: s == float(1e-6) itself (9.99999997e-7). That float is below
-// 1e-6, so the double reference takes the mean there, while a float32
-// comparison with the constant 1e-6 (which rounds to that same float) takes
-// the ratio; the two backends may differ at that one value.
+// float32 neighbours of 1e-6 and float(1e-6) itself (9.99999997e-7: below
+// 1e-6, so the mean, although a float comparison with the literal 1e-6, which
+// rounds to that very float, would say otherwise; test_cpu_brovey_threshold.cpp
+// pins the exact double boundary). A negative third frame makes the mean
+// (about -0.083) far from the ratio (about s): a pixel on the wrong side is off
+// by 0.08, where the tolerance is 1e-5.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,6 +40,7 @@ std::vector<Pixel> threshold_cases() {
         {0.6e-6f, 0.3e-6f, false},  // s = 0.9e-6
         {0.5e-6f, 0.49e-6f, false},  // s = 0.99e-6
         {std::nextafter(one, 0.0f), 0.0f, false},  // the float below float(1e-6): below 1e-6 either way
+        {one, 0.0f, false},                        // float(1e-6) itself: below 1e-6
         {std::nextafter(one, 1.0f), 0.0f, true},   // the float above it: above 1e-6 either way
         {0.51e-6f, 0.5e-6f, true},  // s = 1.01e-6
         {0.6e-6f, 0.5e-6f, true},   // s = 1.1e-6

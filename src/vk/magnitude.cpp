@@ -103,9 +103,10 @@ std::optional<int> choose_exponent(std::uint32_t frames_max, std::uint32_t backg
 }
 
 float brovey_threshold(int exponent) {
-    // The kernels' literal was float(1e-6); below e = -108 the threshold
-    // passes FLT_MAX, which no scaled sum (<= K) reaches either.
-    const double t = std::ldexp(double(1e-6f), -exponent);
+    // The smallest float >= 1e-6, as the kernel's unscaled threshold: scaled
+    // by a power of two it stays the smallest float >= 1e-6 * 2^-e. Below
+    // e = -108 it passes FLT_MAX, which no scaled sum (<= K) reaches either.
+    const double t = std::ldexp(double(std::nextafter(1e-6f, 1.0f)), -exponent);
     return t > double(std::numeric_limits<float>::max()) ? std::numeric_limits<float>::max() : float(t);
 }
 
