@@ -82,10 +82,13 @@ inline pid_t start_cli(const std::vector<std::string>& args, const std::string& 
 }
 
 // The staging directory a running `vkfuse run` / `vkfuse sim` writes into
-// (".vkfuse-partial-*" beside its output), or "" while there is none.
-inline std::string staging_directory(const std::string& parent) {
+// (".vkfuse-partial-*" beside its output) that holds entry ("" for any), or
+// "" while there is none. (`run --out --record` stages two.)
+inline std::string staging_directory(const std::string& parent, const std::string& entry = "") {
     for (const auto& e : std::filesystem::directory_iterator(parent))
-        if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0) return e.path().string();
+        if (e.path().filename().string().rfind(".vkfuse-partial-", 0) == 0 &&
+            (entry.empty() || std::filesystem::exists(e.path() / entry)))
+            return e.path().string();
     return {};
 }
 

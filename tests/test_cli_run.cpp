@@ -102,8 +102,8 @@ TEST(CliRun, InterruptFinishesTheCycleAndFlushes) {
     // Wait until it has fused a few cycles (in the staging directory beside
     // --out, where a run writes until it ends), then interrupt.
     auto staged_lines = [&] {
-        const std::string staging = staging_directory(tmp.file(""));
-        return staging.empty() || !fs::exists(staging + "/metrics.jsonl")
+        const std::string staging = staging_directory(tmp.file(""), "metrics.jsonl");
+        return staging.empty()
                    ? std::size_t(0)
                    : lines_of(read_bytes(staging + "/metrics.jsonl")).size();
     };

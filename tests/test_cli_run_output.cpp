@@ -244,8 +244,8 @@ TEST(CliRunUnlucky, SigtermFinishesTheRunAndTheRecording) {
     // The run writes into a hidden staging directory beside --out: wait for
     // two metrics lines there.
     auto staged_lines = [&] {
-        const std::string staging = staging_directory(tmp.file(""));
-        return staging.empty() || !fs::exists(staging + "/metrics.jsonl")
+        const std::string staging = staging_directory(tmp.file(""), "metrics.jsonl");
+        return staging.empty()
                    ? std::size_t(0)
                    : count_lines(read_bytes(staging + "/metrics.jsonl"));
     };
@@ -329,6 +329,35 @@ TEST(CliRunUnlucky, InterruptedSimLeavesNothing) {
     EXPECT_EQ(WEXITSTATUS(status), 2);
     EXPECT_TRUE(has(read_bytes(tmp.file("stderr")), "--out " + tmp.file("set") + ": interrupted; nothing written"));
     EXPECT_EQ(tmp.entries(), std::vector<std::string>{"stderr"});
+}
+
+// "o/" names the directory o: staged beside it and published as o. A trailing
+// slash neither bypasses the symlink check nor lets --record alias --out.
+TEST(CliRunUnlucky, TrailingSlashesNameTheSameDirectory) {
+    TempDir tmp;
+    std::vector<std::string> args = run_args(tmp, "o", 1);
+    args.back() += "/";
+    const CliResult r = run_cli(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count_lines(read_bytes(tmp.file("o/metrics.jsonl"))), 1u);
+    EXPECT_EQ(tmp.entries(), std::vector<std::string>{"o"});
+
+    fs::create_directory(tmp.file("real"));
+    fs::create_directory_symlink(tmp.file("real"), tmp.file("link"));
+    args = run_args(tmp, "link", 1);
+    args.back() += "/";
+    expect_one_line_failure(run_cli(args), "is a symbolic link");
+
+    args = run_args(tmp, "p", 1);
+    args.back() += "/";
+    args.insert(args.end(), {"--record", tmp.file("./p")});
+    expect_one_line_failure(run_cli(args), ": the same directory as --out");
+    EXPECT_FALSE(fs::exists(tmp.file("p")));
+
+    for (const std::string dot : {".", "..", "/"}) {
+        const CliResult bad = run_cli({"run", "--virtual-clock", "--cycles", "1", "--out", dot});
+        expect_one_line_failure(bad, "--out " + dot + ": name a directory of its own");
+    }
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 
 #include "backend.hpp"
@@ -81,10 +80,9 @@ void stage_outputs(Session& s, const Args& args) {
         s.out_dir = std::make_unique<StagedDirectory>(
             *o.out, StagedDirectory::Policy{"--out", args.has("--replace"), is_run_output_entry, "--replace"});
     if (o.record) {
-        if (o.out && std::filesystem::path(*o.out).lexically_normal() ==
-                         std::filesystem::path(*o.record).lexically_normal())
-            throw Error(ErrorKind::InvalidArgument, "--record " + *o.record + ": the same directory as --out");
         s.record_dir = std::make_unique<StagedDirectory>(*o.record, StagedDirectory::Policy{"--record", false, nullptr, ""});
+        if (s.out_dir && s.out_dir->where() == s.record_dir->where())
+            throw Error(ErrorKind::InvalidArgument, "--record " + *o.record + ": the same directory as --out");
     }
 }
 

@@ -58,12 +58,20 @@ StagedDirectory::StagedDirectory(std::string target, Policy policy)
     : target_(std::move(target)), policy_(std::move(policy)) {
     const std::string about = policy_.option + " " + target_;
     if (target_.empty()) fail(ErrorKind::InvalidArgument, policy_.option + ": empty path");
+    // "out/", "./out" and "a/../out" name the directory "out": its staging
+    // sibling goes beside it, never inside. ".", ".." and "/" name no new
+    // directory a run could publish.
+    fs::path normal = fs::path(target_).lexically_normal();
+    if (!normal.has_filename()) normal = normal.parent_path();
+    if (normal.empty() || !normal.has_filename() || normal.filename() == "." || normal.filename() == "..")
+        fail(ErrorKind::InvalidArgument, about + ": name a directory of its own (not . or .. or /)");
+    where_ = normal.string();
     struct stat st {};
-    if (::lstat(target_.c_str(), &st) == 0) {
+    if (::lstat(where_.c_str(), &st) == 0) {
         if (S_ISLNK(st.st_mode))
             fail(ErrorKind::InvalidArgument, about + ": is a symbolic link; name the directory itself");
         if (!S_ISDIR(st.st_mode)) fail(ErrorKind::InvalidArgument, about + ": exists and is not a directory");
-        if (!is_empty_directory(target_)) {
+        if (!is_empty_directory(where_)) {
             if (!policy_.replace)
                 fail(ErrorKind::InvalidArgument,
                      about + ": exists and is not empty" +
@@ -71,7 +79,7 @@ StagedDirectory::StagedDirectory(std::string target, Policy policy)
                                                          : " (name a new one, or add " + policy_.replace_option +
                                                                " to replace it once this run succeeds)"));
             std::error_code ec;
-            for (const fs::directory_entry& e : fs::directory_iterator(target_, ec)) {
+            for (const fs::directory_entry& e : fs::directory_iterator(where_, ec)) {
                 const std::string name = e.path().filename().string();
                 if (!policy_.ours || !policy_.ours(name))
                     fail(ErrorKind::InvalidArgument, about + ": holds " + name +
@@ -82,7 +90,7 @@ StagedDirectory::StagedDirectory(std::string target, Policy policy)
     } else if (errno != ENOENT) {
         fail(ErrorKind::Io, about + ": " + errno_text(errno));
     }
-    const fs::path parent = parent_of(target_);
+    const fs::path parent = parent_of(where_);
     std::error_code ec;
     fs::create_directories(parent, ec);
     if (ec) fail(ErrorKind::Io, about + ": cannot create " + parent.string() + ": " + ec.message());
@@ -97,7 +105,7 @@ void StagedDirectory::publish() {
     const std::string about = policy_.option + " " + target_;
     // rename() moves a directory onto a missing name or an empty directory in
     // one step; a non-empty target makes it fail with ENOTEMPTY/EEXIST.
-    if (::rename(staging_.c_str(), target_.c_str()) == 0) {
+    if (::rename(staging_.c_str(), where_.c_str()) == 0) {
         done_ = true;
         return;
     }
@@ -105,18 +113,18 @@ void StagedDirectory::publish() {
     if ((err == ENOTEMPTY || err == EEXIST) && policy_.replace) {
         // Swap atomically where the kernel and file system can, so the target
         // name always holds one complete run; else move the old one aside first.
-        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) == 0) {
+        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, where_.c_str(), RENAME_EXCHANGE) == 0) {
             done_ = true;
             remove_tree(staging_);  // now the replaced run
             return;
         }
-        const std::string old = make_unique_directory(parent_of(target_), ".vkfuse-replaced-", about);
-        if (::rename(target_.c_str(), old.c_str()) != 0) {
+        const std::string old = make_unique_directory(parent_of(where_), ".vkfuse-replaced-", about);
+        if (::rename(where_.c_str(), old.c_str()) != 0) {
             err = errno;
             ::rmdir(old.c_str());
-        } else if (::rename(staging_.c_str(), target_.c_str()) != 0) {
+        } else if (::rename(staging_.c_str(), where_.c_str()) != 0) {
             err = errno;
-            ::rename(old.c_str(), target_.c_str());  // put the previous run back
+            ::rename(old.c_str(), where_.c_str());  // put the previous run back
         } else {
             done_ = true;
             remove_tree(old);

@@ -39,6 +39,8 @@ public:
     // Where to write now.
     const std::string& path() const { return staging_; }
     const std::string& target() const { return target_; }
+    // target normalised ("out/" and "./out" are "out"): the name published.
+    const std::string& where() const { return where_; }
 
     // Moves the staging directory to target in one rename (an exchange when
     // replacing, then the old directory is removed). If target was filled by
@@ -47,7 +49,9 @@ public:
     void publish();
 
 private:
-    std::string target_, staging_;
+    std::string target_;  // as the user wrote it, for messages
+    std::string where_;   // the same directory, normalised: what the system calls use
+    std::string staging_;
     Policy policy_;
     bool done_ = false;
 };
