@@ -98,6 +98,22 @@ TEST(CliRunHostile, ObjectNameThatClimbsOutIsRefused) {
     EXPECT_FALSE(fs::exists(tmp.file("a/b/o")));
 }
 
+// A manifest's frame size never chooses how much memory a replay takes: the
+// rig's need is checked from the manifest before any buffer is sized.
+TEST(CliRunHostile, HugeFrameSizeInAManifestIsRefusedUpFront) {
+    TempDir tmp;
+    const std::string rec = record(tmp);
+    // 65536 x 65536: were the check gone, the first allocation (100 GiB of
+    // double) fails at once instead of paging the machine to death.
+    replace_in_file(rec + "/manifest.json", "\"width\": 320", "\"width\": 65536");
+    replace_in_file(rec + "/manifest.json", "\"height\": 240", "\"height\": 65536");
+    const CliResult r = run_cli({"run", "--replay", rec, "--backend", "cpu", "--out", tmp.file("o")},
+                                {"VKFUSE_MEMORY_LIMIT=1G"});
+    expect_one_line_failure(r, rec + "/manifest.json: replaying needs about ");
+    EXPECT_TRUE(has(r.err, "GiB of memory, 1.0 GiB available (VKFUSE_MEMORY_LIMIT)")) << r.err;
+    EXPECT_FALSE(fs::exists(tmp.file("o")));
+}
+
 // "000040..png" holds ".." but no ".." component: an ordinary name.
 TEST(CliRunHostile, DotsInsideANameAreNotATraversal) {
     TempDir tmp;

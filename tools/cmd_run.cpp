@@ -3,11 +3,13 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 
 #include "backend.hpp"
 #include "commands.hpp"
 #include "fusion_options.hpp"
+#include "memory_check.hpp"
 #include "progress.hpp"
 #include "run_options.hpp"
 #include "run_output.hpp"
@@ -86,6 +88,25 @@ void stage_outputs(Session& s, const Args& args) {
     }
 }
 
+// A replayed manifest says how large its frames are: before any buffer is
+// sized from that, the rig's memory is checked against what the process may
+// take. Per sensor, its fusion and frames are bounded like a `vkfuse fuse` of
+// K frames of that shape, plus three cycles of 8-bit frames in flight (the
+// capture, the mailbox, the last good cycle) and the background means.
+void require_replay_memory(const RunOptions& o, const Dataset& dataset) {
+    const std::uint64_t K = o.sequence.size();
+    std::uint64_t need = 0;
+    for (const DatasetSensorRecord& r : dataset.sensors) {
+        io::ImageHeader frame;
+        frame.height = r.info.height;
+        frame.width = r.info.width;
+        frame.channels = 3;
+        need += fuse_memory_need(std::vector<io::ImageHeader>(K, frame), o.fusion.method, o.backend);
+        need += K * (3 * frame.samples() + frame.image_bytes());
+    }
+    require_memory({(std::filesystem::path(dataset.directory) / "manifest.json").string()}, "replaying", need);
+}
+
 Session prepare(const Args& args) {
     Session s;
     s.options = parse_run_options(args);
@@ -93,6 +114,7 @@ Session prepare(const Args& args) {
     if (s.options.replay) {
         s.dataset = std::make_shared<const Dataset>(read_dataset(*s.options.replay));
         adopt_recording(s.options, args, *s.dataset);
+        require_replay_memory(s.options, *s.dataset);
         s.sensors = replayed_sensors(s.options, s.dataset);
         if (s.sensors.recorded_cycles == 0)
             throw Error(ErrorKind::InvalidArgument, "--replay " + *s.options.replay + ": no full cycle of " +
