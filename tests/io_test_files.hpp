@@ -15,6 +15,18 @@
 
 namespace vkfuse::test {
 
+// The process umask set to mask for one scope (tests of output modes).
+class Umask {
+public:
+    explicit Umask(mode_t mask) : old_(::umask(mask)) {}
+    ~Umask() { ::umask(old_); }
+    Umask(const Umask&) = delete;
+    Umask& operator=(const Umask&) = delete;
+
+private:
+    mode_t old_;
+};
+
 inline constexpr std::uint64_t kTerabyte = std::uint64_t(1) << 40;
 
 inline std::string be32(std::uint32_t v) {

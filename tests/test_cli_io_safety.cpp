@@ -73,15 +73,6 @@ CliResult fuse_into(const TempDir& dir, const std::string& output, std::vector<s
                    extra_env);
 }
 
-class Umask {
-public:
-    explicit Umask(mode_t mask) : old_(::umask(mask)) {}
-    ~Umask() { ::umask(old_); }
-
-private:
-    mode_t old_;
-};
-
 TEST(CliOutputModes, UmaskIsFollowed) {
     TempDir dir;
     write_frames(dir);

@@ -31,16 +31,6 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Sets the umask for one scope (the tests run on one thread).
-class Umask {
-public:
-    explicit Umask(mode_t mask) : old_(::umask(mask)) {}
-    ~Umask() { ::umask(old_); }
-
-private:
-    mode_t old_;
-};
-
 TEST(ReadLimits, TerabyteSparseNpyIsRefusedWithoutReadingIt) {
     TempDir dir;
     const std::string path = dir.file("huge.npy");

@@ -42,4 +42,21 @@ double max_abs_diff(const Image& a, const ImageD& b) { return max_abs_diff(conve
 
 std::string data_path(const std::string& name) { return std::string(VKFUSE_TEST_DATA) + "/" + name; }
 
+std::vector<FusionSpec> every_pyramid_and_wavelet_max_abs() {
+    std::vector<FusionSpec> specs;
+    FusionSpec lap;
+    lap.method = Method::Laplacian;
+    specs.push_back(lap);
+    for (Wavelet w : {Wavelet::Haar, Wavelet::Db2, Wavelet::Bior22, Wavelet::Bior44})
+        for (WaveletMode m : {WaveletMode::Periodization, WaveletMode::Symmetric}) {
+            FusionSpec s;
+            s.method = Method::Wavelet;
+            s.wavelet = w;
+            s.mode = m;
+            specs.push_back(s);
+        }
+    for (FusionSpec& s : specs) s.base_rule = s.detail_rule = Rule::MaxAbs;
+    return specs;
+}
+
 }  // namespace vkfuse::test

@@ -2,7 +2,9 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "vkfuse/fusion.hpp"
 #include "vkfuse/image.hpp"
 
 namespace vkfuse::test {
@@ -14,6 +16,9 @@ ImageD structured_image(int height, int width, int channels, std::uint32_t seed)
 // Largest |a - b| over all samples; a and b must have one shape.
 double max_abs_diff(const ImageD& a, const ImageD& b);
 double max_abs_diff(const Image& a, const ImageD& b);
+// The Laplacian and every wavelet in both modes (default levels), max-abs for
+// base and detail: every transform whose coefficients a max-abs rule picks.
+std::vector<FusionSpec> every_pyramid_and_wavelet_max_abs();
 // Path of a file under tests/data.
 std::string data_path(const std::string& name);
 
