@@ -1,11 +1,9 @@
 // vkfuse fuse: read K frames, fuse them on the chosen backend, write one image.
-#include <cmath>
-#include <cstdio>
-#include <limits>
 #include <new>
 #include <span>
 
 #include "backend.hpp"
+#include "core/check_finite.hpp"
 #include "commands.hpp"
 #include "fusion_options.hpp"
 #include "inputs.hpp"
@@ -49,16 +47,7 @@ Image fuse_on_cpu(const FusionSpec& spec, const std::vector<Input>& inputs) {
     frames.reserve(inputs.size());
     for (const Input& in : inputs) frames.push_back(convert<double>(in.image));
     const ImageD fused = fuse_reference(frames, spec);
-    for (std::size_t i = 0; i < fused.data.size(); ++i)
-        if (std::abs(fused.data[i]) > double(std::numeric_limits<float>::max())) {
-            const std::size_t C = std::size_t(fused.channels), pixel = i / C;
-            char value[32];
-            std::snprintf(value, sizeof value, "%.9g", fused.data[i]);
-            throw Error(ErrorKind::Numeric, "fused value " + std::string(value) + " at row " +
-                                                std::to_string(pixel / std::size_t(fused.width)) + ", column " +
-                                                std::to_string(pixel % std::size_t(fused.width)) + ", channel " +
-                                                std::to_string(i % C) + " lies beyond float32's range");
-        }
+    core::require_float32_range(fused, "fused");
     return convert<float>(fused);
 }
 
