@@ -17,9 +17,15 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Wor
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 layout(buffer_reference, std430, buffer_reference_align = 2) buffer Planes { float16_t v[]; };
 #define TO_PLANE(x) float16_t(x)
+#define plane_t float16_t
+#define plane4_t f16vec4
+#define TO_PLANE4(x) f16vec4(x)
 #else
 #define Planes Floats
 #define TO_PLANE(x) (x)
+#define plane_t float
+#define plane4_t vec4
+#define TO_PLANE4(x) (x)
 #endif
 
 // Item index of a 1-D kernel of group_size invocations per group, dispatched

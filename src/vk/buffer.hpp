@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "vk/context_impl.hpp"
+#include "vk/device_span.hpp"
 
 namespace vkfuse::vk {
 
@@ -26,6 +27,7 @@ public:
     VkDeviceAddress address() const { return address_; }
     VkDeviceSize size() const { return size_; }
     void* mapped() const { return mapped_; }  // null for MemoryUse::Device
+    DeviceSpan span() const { return {buffer_, 0, size_, address_}; }
 
 private:
     Context::Impl* ctx_ = nullptr;

@@ -42,7 +42,8 @@ bool has_layer(const vk::Api& api, const char* name) {
 
 }  // namespace
 
-Context::Impl::Impl(const ContextOptions& options) : on_validation_message(options.on_validation_message) {
+Context::Impl::Impl(const ContextOptions& options)
+    : device_addresses_only(options.device_addresses_only), on_validation_message(options.on_validation_message) {
     api = vk::Api::load();
     // VKFUSE_VALIDATION=1 turns the layer on for any program (the CLI in tests).
     const char* env = std::getenv("VKFUSE_VALIDATION");
@@ -155,8 +156,17 @@ void Context::Impl::create_device() {
 }
 
 void Context::Impl::create_layout() {
+    VkDescriptorSetLayoutBinding bindings[kMaxKernelBuffers]{};
+    for (std::uint32_t b = 0; b < kMaxKernelBuffers; ++b)
+        bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    lci.bindingCount = kMaxKernelBuffers;
+    lci.pBindings = bindings;
+    vk::check(api->vkCreateDescriptorSetLayout(device, &lci, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
     VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushConstantBytes};
     VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    ci.setLayoutCount = 1;
+    ci.pSetLayouts = &set_layout;
     ci.pushConstantRangeCount = 1;
     ci.pPushConstantRanges = &range;
     vk::check(api->vkCreatePipelineLayout(device, &ci, nullptr, &layout), "vkCreatePipelineLayout");
@@ -220,6 +230,8 @@ void Context::Impl::release() {
         for (auto& [name, pipe] : pipelines_) api->vkDestroyPipeline(device, pipe, nullptr);
         pipelines_.clear();
         if (layout) api->vkDestroyPipelineLayout(device, layout, nullptr);
+        if (set_layout) api->vkDestroyDescriptorSetLayout(device, set_layout, nullptr);
+        set_layout = VK_NULL_HANDLE;
         api->vkDestroyDevice(device, nullptr);
         device = VK_NULL_HANDLE;
         layout = VK_NULL_HANDLE;

@@ -26,7 +26,11 @@ struct Context::Impl {
     VkPhysicalDeviceMemoryProperties memory{};
     DeviceInfo info;
     bool timestamps = false;  // queue supports timestamp queries
-    VkPipelineLayout layout = VK_NULL_HANDLE;  // push constants only, shared by all kernels
+    bool device_addresses_only = false;  // ContextOptions::device_addresses_only
+    // Shared by all kernels: set 0 of kMaxKernelBuffers storage buffers (the
+    // bound variants, shaders/bindings.glsl) and kPushConstantBytes.
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
 
     std::mutex queue_mutex;  // vkQueueSubmit needs external synchronisation across threads
 
@@ -64,5 +68,7 @@ private:
 
 // Maximum push-constant bytes any vkfuse kernel uses (the guaranteed minimum).
 inline constexpr std::uint32_t kPushConstantBytes = 128;
+// Most buffers one kernel binds (shaders/bindings.glsl).
+inline constexpr std::uint32_t kMaxKernelBuffers = 8;
 
 }  // namespace vkfuse

@@ -35,7 +35,7 @@ public:
     ProbeKernels(Context::Impl& ctx, const Buffer& src, const Buffer& dst) : ctx_(ctx), src_(src), dst_(dst) {
         try {
             create_set();
-            for (const char* name : {"probe_copy_address", "probe_copy_bound", "probe_copy_bound_vec4", "probe_shared",
+            for (const char* name : {"probe_copy_address", "probe_copy_address_vec4", "probe_copy_bound", "probe_copy_bound_vec4", "probe_shared",
                                      "probe_fma"})
                 pipelines_[name] = ctx_.create_pipeline(name, layout_);
         } catch (...) {
@@ -248,6 +248,7 @@ KernelAccess measure_kernel_access(Context& context, std::uint64_t bytes, int re
     r.floats = floats;
     const double n = floats;
     r.address_ns = probe.time_checked("probe_copy_address", floats, doubled) / n * 1e9;
+    r.address_vec4_ns = probe.time_checked("probe_copy_address_vec4", floats / 4, doubled) / n * 1e9;
     r.bound_ns = probe.time_checked("probe_copy_bound", floats, doubled) / n * 1e9;
     r.bound_vec4_ns = probe.time_checked("probe_copy_bound_vec4", floats / 4, doubled) / n * 1e9;
     r.shared_exchange_ns = probe.time_checked("probe_shared", floats, shared_rotated) / (n * kSharedRounds) * 1e9;

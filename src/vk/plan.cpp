@@ -76,21 +76,25 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context
 }
 
 void Plan::Impl::record() {
-    vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision));
-    vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address()};
+    addressed = ctx.device_addresses_only || vk::needs_device_addresses(cfg, ctx.properties.limits);
+    sets.emplace(ctx);
+    vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed);
+    vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
     const std::uint32_t w = std::uint32_t(cfg.width), h = std::uint32_t(cfg.height);
     VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * w * h);
-    rec.dispatch("unpack",
-                 vk::PushConstants()
-                     .ptr(upload.address())
-                     .ptr(input)
-                     .u32(w)
-                     .u32(h)
-                     .u32(std::uint32_t(cfg.channels))
-                     .u32(cfg.input == PixelType::U8)
-                     .u32(w * h * std::uint32_t(cfg.channels))
-                     .u32(w * h),
-                 vk::groups(w, 16), vk::groups(h, 16), std::uint32_t(cfg.sensors * cfg.frames));
+    {
+        const std::uint32_t pixels = w * h;
+        const bool quads = pixels % 4 == 0;
+        const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
+        const vk::DeviceSpan frames = upload.span(), planes = g.span(input);
+        rec.dispatch("unpack", {frames, frames, planes, planes},
+                     vk::PushConstants()
+                         .u32(pixels)
+                         .u32(std::uint32_t(cfg.channels))
+                         .u32(cfg.input == PixelType::U8)
+                         .u32(quads),
+                     grid.x, grid.y, std::uint32_t(cfg.sensors * cfg.frames));
+    }
     rec.mark("unpack");
     VkDeviceAddress fused_planes = input;  // passthrough: the frame is its own result
     switch (cfg.fusion.method) {
@@ -382,6 +386,27 @@ VkDeviceAddress GraphBuilder::planes(std::uint64_t count) {
     // Rounded up to whole floats: a float16 plane set of odd length stays 4-byte sized.
     buffers.emplace_back(ctx, (count * bytes_per_sample + 3) / 4 * 4, MemoryUse::Device);
     return buffers.back().address();
+}
+
+DeviceSpan GraphBuilder::span(VkDeviceAddress address, VkDeviceSize bytes) const {
+    auto within = [&](const Buffer& b) -> std::optional<DeviceSpan> {
+        if (!b.handle() || address < b.address() || address >= b.address() + b.size()) return std::nullopt;
+        const VkDeviceSize from = address - b.address();
+        if (bytes > b.size() - from) throw Error(ErrorKind::Device, "internal: span past the end of its buffer");
+        return b.span().sub(from, bytes);
+    };
+    for (const Buffer& b : buffers)
+        if (auto s = within(b)) return *s;
+    for (const Buffer* b : fixed)
+        if (auto s = within(*b)) return *s;
+    throw Error(ErrorKind::Device, "internal: no plan buffer holds the address");
+}
+
+bool needs_device_addresses(const PlanConfig& c, const VkPhysicalDeviceLimits& limits) {
+    // The largest buffers: the frames as uploaded, and one plane set of every
+    // frame (a periodization block is up to one sample wider and taller).
+    const double plane_set = double(c.sensors) * c.frames * c.channels * (double(c.height) + 1) * (double(c.width) + 1);
+    return plane_set * 4 > double(limits.maxStorageBufferRange);
 }
 
 VkDeviceAddress GraphBuilder::constants(const std::vector<float>& values) {

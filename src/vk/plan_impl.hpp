@@ -21,6 +21,8 @@ struct GraphBuilder {
     // sensor's scaled domain (vk/magnitude.hpp), host-written every run; 0
     // otherwise (8-bit frames are never scaled: the kernel's own 1e-6).
     VkDeviceAddress brovey_thresholds = 0;
+    // Buffers the plan owns outside `buffers` (upload, background, readback).
+    std::vector<const Buffer*> fixed;
 
     std::uint32_t planes_in() const { return std::uint32_t(cfg.sensors * cfg.frames * cfg.channels); }
     std::uint32_t planes_out() const { return std::uint32_t(cfg.sensors * cfg.channels); }
@@ -31,7 +33,15 @@ struct GraphBuilder {
     VkDeviceAddress planes(std::uint64_t count);
     // A small host-written buffer holding values (filter taps, ...); its address.
     VkDeviceAddress constants(const std::vector<float>& values);
+    // The `bytes` (0: to the end of its buffer) starting at `address`, in the
+    // buffer of the plan that holds it: what Recorder::dispatch binds.
+    DeviceSpan span(VkDeviceAddress address, VkDeviceSize bytes = 0) const;
 };
+
+// Whether a plan's largest buffer may exceed what one descriptor can bind
+// (maxStorageBufferRange): such a plan runs the kernels' device-address
+// variants.
+bool needs_device_addresses(const PlanConfig& cfg, const VkPhysicalDeviceLimits& limits);
 
 // Records the fusion of the unpacked input planes (S*K*C planes of H x W,
 // plane (s*K + k)*C + c) and returns the address of the fused planes (S*C
@@ -70,6 +80,8 @@ struct Plan::Impl {
     vk::Buffer readback;    // fused HWC images, then metric totals
     vk::Buffer thresholds;  // Brovey, float32 input: GraphBuilder::brovey_thresholds
     std::vector<vk::Buffer> buffers;
+    std::optional<vk::DescriptorSets> sets;  // the bound kernels' descriptors, written by record()
+    bool addressed = false;                  // needs_device_addresses, or ContextOptions::device_addresses
     // After the buffers, so it is released (and a pending submit waited out) first.
     std::optional<vk::CommandSlot> slot;
     std::vector<std::string> stage_names;

@@ -18,6 +18,7 @@ public:
     PushConstants& u32(std::uint32_t v) { return put(&v, sizeof v); }
     PushConstants& i32(std::int32_t v) { return put(&v, sizeof v); }
     PushConstants& f32(float v) { return put(&v, sizeof v); }
+    PushConstants& append(const PushConstants& more) { return put(more.data(), more.size()); }
     const void* data() const { return bytes_.data(); }
     std::uint32_t size() const { return std::uint32_t(size_); }
 

@@ -1,6 +1,5 @@
 #include "vk/recorder.hpp"
 
-#include <utility>
 
 #include "vkfuse/error.hpp"
 
@@ -13,8 +12,10 @@ PushConstants& PushConstants::put(const void* v, std::size_t n) {
     return *this;
 }
 
-Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, std::string variant)
-    : ctx_(ctx), cmd_(cmd), queries_(queries), variant_(std::move(variant)) {
+Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
+                   DescriptorSets& sets, bool addressed)
+    : ctx_(ctx), cmd_(cmd), queries_(queries), variant_(precision + (addressed ? "_addr" : "")), sets_(sets),
+      addressed_(addressed) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     check(ctx.api->vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
     if (queries_) {
@@ -39,16 +40,39 @@ void Recorder::barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPip
     memory_barrier(*ctx_.api, cmd_, src, src_access, dst, dst_access);
 }
 
-void Recorder::dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,
-                        std::uint32_t gz, std::span<const std::uint32_t> specialization) {
-    if (gx == 0 || gy == 0 || gz == 0) return;
+void Recorder::begin_dispatch(const std::string& shader, std::span<const std::uint32_t> specialization) {
     if (!first_)
         barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     first_ = false;
+    ctx_.api->vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader + variant_, specialization));
+}
+
+void Recorder::dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,
+                        std::uint32_t gz, std::span<const std::uint32_t> specialization) {
+    if (gx == 0 || gy == 0 || gz == 0) return;
+    begin_dispatch(shader, specialization);
     auto& api = *ctx_.api;
-    api.vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader + variant_, specialization));
     api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
+    api.vkCmdDispatch(cmd_, gx, gy, gz);
+}
+
+void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                        const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
+                        std::span<const std::uint32_t> specialization) {
+    if (gx == 0 || gy == 0 || gz == 0) return;
+    begin_dispatch(shader, specialization);
+    auto& api = *ctx_.api;
+    PushConstants push;
+    if (addressed_) {
+        for (const DeviceSpan& b : buffers) push.ptr(b.address());
+    } else {
+        const VkDescriptorSet set = sets_.bind(std::span(buffers.begin(), buffers.size()));
+        api.vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.layout, 0, 1, &set, 0, nullptr);
+    }
+    push.append(scalars);
+    if (push.size() > 0)
+        api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
     api.vkCmdDispatch(cmd_, gx, gy, gz);
 }
 

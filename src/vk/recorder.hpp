@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "vk/context_impl.hpp"
+#include "vk/descriptor_sets.hpp"
+#include "vk/device_span.hpp"
 #include "vk/push_constants.hpp"
 
 namespace vkfuse::vk {
@@ -13,9 +15,20 @@ class Recorder {
 public:
     static constexpr std::uint32_t kMaxTimestamps = 512;
 
-    // queries may be VK_NULL_HANDLE (no profiling). variant is appended to
+    // queries may be VK_NULL_HANDLE (no profiling). precision is appended to
     // every shader name dispatched ("" or "_fp16": the plan's precision).
-    Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, std::string variant);
+    // Kernels get their buffers bound through sets made in `sets`, or, when
+    // `addressed`, as device addresses (the kernels' "_addr" variants).
+    Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
+             DescriptorSets& sets, bool addressed);
+
+    // Records shader over groups (x, y, z) with `buffers` in the order of its
+    // BUFFERS list (shaders/bindings.glsl) and `scalars`, the rest of its
+    // push-constant block. Everything the previous dispatches wrote is visible
+    // to it. specialization: the values of its constant_id 0, 1, ...
+    void dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers, const PushConstants& scalars,
+                  std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
+                  std::span<const std::uint32_t> specialization = {});
 
     // Records shader with push constants over groups (x, y, z). Everything the
     // previous dispatches wrote is visible to it. specialization: the values of
@@ -33,11 +46,14 @@ private:
     VkCommandBuffer cmd_;
     VkQueryPool queries_;
     std::string variant_;
+    DescriptorSets& sets_;
+    bool addressed_;
     bool first_ = true;
     std::vector<std::string> names_;
 
     void barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
                  VkAccessFlags dst_access);
+    void begin_dispatch(const std::string& shader, std::span<const std::uint32_t> specialization);
 };
 
 // A global memory barrier from (src, src_access) to (dst, dst_access). Its

@@ -1,0 +1,127 @@
+// Kernels reach their buffers through descriptor bindings, or, in plans beyond
+// maxStorageBufferRange, through device addresses: two builds of every kernel
+// from one source (shaders/bindings.glsl). Both must give the same bits for
+// every method, input type and shape, including shapes whose planes are not a
+// multiple of four samples (the kernels' scalar paths).
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+#include "vk_fixture.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+Context& addressed_context() {
+    static Context ctx([] {
+        ContextOptions o;
+        o.validation = true;
+        o.device_addresses_only = true;
+        o.on_validation_message = [](const std::string& m) {
+            auto& log = validation_log();
+            std::lock_guard lock(log.mutex);
+            log.messages.push_back(m);
+        };
+        return o;
+    }());
+    return ctx;
+}
+
+struct Shape {
+    int height, width, channels, frames, sensors;
+    PixelType input;
+};
+
+struct Results {
+    std::vector<Image> fused;
+    std::vector<Metrics> metrics;
+};
+
+Results run(Context& ctx, const FusionSpec& spec, const Shape& s) {
+    PlanConfig cfg;
+    cfg.fusion = spec;
+    cfg.height = s.height;
+    cfg.width = s.width;
+    cfg.channels = s.channels;
+    cfg.frames = s.frames;
+    cfg.sensors = s.sensors;
+    cfg.input = s.input;
+    cfg.background_diff = true;
+    Plan plan(ctx, cfg);
+    std::vector<Image> floats;
+    std::vector<std::vector<std::uint8_t>> bytes;
+    std::vector<FrameView> views;
+    for (int i = 0; i < s.sensors * s.frames; ++i) {
+        floats.push_back(convert<float>(structured_image(s.height, s.width, s.channels, 100 + std::uint32_t(i))));
+        std::vector<std::uint8_t> b;
+        for (float v : floats.back().data) b.push_back(std::uint8_t(v * 255.0f + 0.5f));
+        bytes.push_back(std::move(b));
+    }
+    for (int i = 0; i < s.sensors * s.frames; ++i)
+        views.push_back(s.input == PixelType::U8
+                            ? FrameView{bytes[std::size_t(i)].data(), s.height, s.width, s.channels, PixelType::U8}
+                            : FrameView::of(floats[std::size_t(i)]));
+    const Image bg = convert<float>(random_image(s.height, s.width, s.channels, 7));
+    for (int sensor = 0; sensor < s.sensors; ++sensor) plan.set_background(sensor, FrameView::of(bg));
+    plan.run(views);
+    Results r;
+    for (int sensor = 0; sensor < s.sensors; ++sensor) {
+        r.fused.push_back(plan.fused(sensor));
+        r.metrics.push_back(plan.metrics(sensor));
+    }
+    return r;
+}
+
+class VulkanBufferAccess : public VulkanTest {};
+
+TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
+    std::vector<FusionSpec> specs;
+    for (Method m : {Method::ChannelSum, Method::Brovey, Method::Mean, Method::Laplacian}) {
+        FusionSpec f;
+        f.method = m;
+        specs.push_back(f);
+    }
+    for (WaveletMode mode : {WaveletMode::Periodization, WaveletMode::Symmetric}) {
+        FusionSpec f;
+        f.method = Method::Wavelet;
+        f.wavelet = Wavelet::Bior44;
+        f.mode = mode;
+        specs.push_back(f);
+    }
+    const Shape shapes[] = {{96, 128, 3, 3, 2, PixelType::U8},  // planes of whole quads
+                            {96, 128, 3, 3, 1, PixelType::F32},
+                            {75, 77, 3, 3, 2, PixelType::U8},  // 5775 pixels: the scalar paths
+                            {75, 77, 1, 2, 1, PixelType::F32}};
+    for (const FusionSpec& spec : specs)
+        for (const Shape& s : shapes) {
+            if (s.channels != 3 && spec.method != Method::Mean && spec.method != Method::Laplacian &&
+                spec.method != Method::Wavelet)
+                continue;
+            if (spec.method == Method::ChannelSum && s.frames != 3) continue;
+            const std::string what = std::string(to_string(spec.method)) + " " + std::to_string(s.height) + "x" +
+                                     std::to_string(s.width) + "x" + std::to_string(s.channels) + " K" +
+                                     std::to_string(s.frames) + " S" + std::to_string(s.sensors) +
+                                     (s.input == PixelType::U8 ? " u8" : " f32");
+            const Results bound = run(ctx(), spec, s);
+            const Results addressed = run(addressed_context(), spec, s);
+            for (int sensor = 0; sensor < s.sensors; ++sensor) {
+                const Image& a = bound.fused[std::size_t(sensor)];
+                const Image& b = addressed.fused[std::size_t(sensor)];
+                ASSERT_EQ(a.data.size(), b.data.size()) << what;
+                EXPECT_EQ(0, std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)))
+                    << what << " sensor " << sensor;
+                const Metrics& ma = bound.metrics[std::size_t(sensor)];
+                const Metrics& mb = addressed.metrics[std::size_t(sensor)];
+                EXPECT_EQ(ma.sharpness, mb.sharpness) << what;
+                EXPECT_EQ(ma.contrast, mb.contrast) << what;
+                EXPECT_EQ(ma.background_diff, mb.background_diff) << what;
+            }
+        }
+}
+
+}  // namespace
+}  // namespace vkfuse::test
