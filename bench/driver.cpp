@@ -74,9 +74,9 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
 
 // The device's floor: what every kernel pays per access, per flop, per dispatch.
 void print_kernel_access(const vk::KernelAccess& a) {
-    std::printf("kernel access: %.3g ns per float copied via device addresses (vkfuse kernels), %.3g via bound "
-                "buffers, %.3g as bound vec4 (%llu floats, %s)\n",
-                a.address_ns, a.bound_ns, a.bound_vec4_ns, static_cast<unsigned long long>(a.floats),
+    std::printf("kernel access: %.3g ns per float copied via device addresses, %.3g as address vec4, %.3g via "
+                "bound buffers, %.3g as bound vec4 (%llu floats, %s)\n",
+                a.address_ns, a.address_vec4_ns, a.bound_ns, a.bound_vec4_ns, static_cast<unsigned long long>(a.floats),
                 a.device_timed ? "device timestamps" : "host clock");
     std::printf("kernel compute: %.3g ns per shared-memory exchange (store, barrier, load, barrier), %.3g GFLOP/s "
                 "multiply-add, %.3g us per small dispatch\n",
