@@ -111,10 +111,13 @@ void Plan::Impl::record() {
                        totals + std::size_t(cfg.sensors) * 16);
     }
     if (cfg.want_fused) {
-        const vk::Grid grid = vk::grid_1d(std::uint64_t(w) * h, 256);
-        rec.dispatch("pack",
-                     vk::PushConstants().ptr(fused_planes).ptr(readback.address()).u32(w * h).u32(std::uint32_t(cfg.channels)),
-                     grid.x, grid.y, std::uint32_t(cfg.sensors));
+        const std::uint32_t pixels = w * h;
+        const bool quads = pixels % 4 == 0;
+        const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
+        const vk::DeviceSpan planes = g.span(fused_planes), image = readback.span().sub(0, totals_offset);
+        rec.dispatch("pack", {planes, planes, image, image},
+                     vk::PushConstants().u32(pixels).u32(std::uint32_t(cfg.channels)).u32(quads), grid.x, grid.y,
+                     std::uint32_t(cfg.sensors));
         rec.mark("pack");
     }
     rec.finish();
