@@ -63,8 +63,11 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context
         background_exponent.assign(S, std::nullopt);
     }
     const std::size_t fused_bytes = cfg.want_fused ? sensor_floats * cfg.sensors * 4 : 0;
-    totals_offset = (fused_bytes + 255) / 256 * 256;
-    readback = vk::Buffer(ctx, totals_offset + std::size_t(cfg.sensors) * 8 * 4, vk::MemoryUse::Readback);
+    // Partials start on a boundary any device accepts as a binding offset.
+    partials_offset = (fused_bytes + 255) / 256 * 256;
+    const std::size_t partial_bytes =
+        cfg.want_metrics ? S * vk::metric_groups(cfg) * vk::kMetricPartialFloats * sizeof(float) : 16;
+    readback = vk::Buffer(ctx, partials_offset + partial_bytes, vk::MemoryUse::Readback);
     if (cfg.profile && !ctx.timestamps)
         throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
     // Should anything here throw, the members built so far release themselves.
@@ -105,16 +108,14 @@ void Plan::Impl::record() {
         case Method::Laplacian: fused_planes = record_laplacian(g, input); break;
         case Method::Wavelet: fused_planes = record_wavelet(g, input); break;
     }
-    if (cfg.want_metrics) {
-        const VkDeviceAddress totals = readback.address() + totals_offset;
-        record_metrics(g, fused_planes, cfg.background_diff ? background.address() : 0, totals,
-                       totals + std::size_t(cfg.sensors) * 16);
-    }
+    if (cfg.want_metrics)
+        record_metrics(g, fused_planes, cfg.background_diff ? background.address() : 0,
+                       readback.span().sub(partials_offset));
     if (cfg.want_fused) {
         const std::uint32_t pixels = w * h;
         const bool quads = pixels % 4 == 0;
         const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
-        const vk::DeviceSpan planes = g.span(fused_planes), image = readback.span().sub(0, totals_offset);
+        const vk::DeviceSpan planes = g.span(fused_planes), image = readback.span().sub(0, partials_offset);
         rec.dispatch("pack", {planes, planes, image, image},
                      vk::PushConstants().u32(pixels).u32(std::uint32_t(cfg.channels)).u32(quads), grid.x, grid.y,
                      std::uint32_t(cfg.sensors));
@@ -342,21 +343,33 @@ Metrics Plan::metrics(int sensor) const {
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: metrics() before run()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
-    const float* t = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
-                                                    im.totals_offset);
-    const float* t0 = t + std::size_t(sensor) * 4;
-    const float* t1 = t + std::size_t(im.cfg.sensors) * 4 + std::size_t(sensor) * 4;
+    const std::size_t groups = vk::metric_groups(im.cfg), n_floats = groups * vk::kMetricPartialFloats;
+    const float* partials = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
+                                                           im.partials_offset) +
+                            std::size_t(sensor) * n_floats;
     // Checked before use: std::max(0.0, NaN) below would make a NaN sum a
     // contrast of 0.
-    check_device_results(im.cfg, sensor, std::span(t0, 4), "a metric sum");
-    check_device_results(im.cfg, sensor, std::span(t1, 4), "a metric sum");
+    check_device_results(im.cfg, sensor, std::span(partials, n_floats), "a metric sum");
+    // The workgroups' partials (shaders/metrics.comp) in double: the sums
+    // added, the moments of the luma deviations combined pairwise (Chan).
+    double sharpness = 0, background_diff = 0, count = 0, mean = 0, m2 = 0;
+    for (std::size_t g = 0; g < groups; ++g) {
+        const float* p = partials + g * vk::kMetricPartialFloats;
+        sharpness += p[0];
+        background_diff += p[1];
+        const double n = p[2];
+        if (n == 0) continue;
+        const double total = count + n, delta = double(p[3]) - mean;
+        mean += delta * n / total;
+        m2 += double(p[4]) + delta * delta * count * n / total;
+        count = total;
+    }
     const double n = double(im.cfg.height) * im.cfg.width;
     const int e = im.exponent[std::size_t(sensor)];  // every metric scales with the frames
     Metrics m;
-    m.sharpness = std::ldexp(double(t0[0]) / n, e);
-    // t1[0] sums squared deviations multiplied by t1[1], a power of two (metrics_partial.comp).
-    m.contrast = std::ldexp(std::sqrt(std::max(0.0, double(t1[0])) / n) / double(t1[1]), e);
-    if (im.cfg.background_diff) m.background_diff = std::ldexp(double(t0[2]) / (n * im.cfg.channels), e);
+    m.sharpness = std::ldexp(sharpness / n, e);
+    m.contrast = std::ldexp(std::sqrt(std::max(0.0, m2) / n), e);
+    if (im.cfg.background_diff) m.background_diff = std::ldexp(background_diff / (n * im.cfg.channels), e);
     return m;
 }
 

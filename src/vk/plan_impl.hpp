@@ -62,11 +62,14 @@ struct RuleFuseRegion {
 };
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& region);
 
-// Records the metric reductions over the fused planes; the two vec4 totals per
-// sensor (pass 0: sharpness sum, luma sum, |I-B| sum; pass 1: squared
-// deviation sum) land at totals0 / totals1 (host-visible).
-void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, VkDeviceAddress totals0,
-                    VkDeviceAddress totals1);
+// Workgroups of the metric pass per sensor: each writes kMetricPartialFloats
+// floats (shaders/metrics.comp).
+inline constexpr std::uint32_t kMetricPartialFloats = 8;
+std::uint32_t metric_groups(const PlanConfig& cfg);
+
+// Records the metric pass over the fused planes; sensor s's partials land at
+// partials, from float s * metric_groups * kMetricPartialFloats on.
+void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials);
 
 }  // namespace vkfuse::vk
 
@@ -77,7 +80,7 @@ struct Plan::Impl {
     PlanConfig cfg;
     vk::Buffer upload;      // frames as given, host-written each run
     vk::Buffer background;  // planar float backgrounds, host-written by set_background
-    vk::Buffer readback;    // fused HWC images, then metric totals
+    vk::Buffer readback;    // fused HWC images, then the metric partials
     vk::Buffer thresholds;  // Brovey, float32 input: GraphBuilder::brovey_thresholds
     std::vector<vk::Buffer> buffers;
     std::optional<vk::DescriptorSets> sets;  // the bound kernels' descriptors, written by record()
@@ -85,7 +88,7 @@ struct Plan::Impl {
     // After the buffers, so it is released (and a pending submit waited out) first.
     std::optional<vk::CommandSlot> slot;
     std::vector<std::string> stage_names;
-    std::size_t totals_offset = 0;  // bytes into readback
+    std::size_t partials_offset = 0;  // bytes into readback
     std::vector<bool> background_set;
     bool has_run = false;
     std::uint64_t submits = 0;
