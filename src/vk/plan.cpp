@@ -83,13 +83,17 @@ void Plan::Impl::record() {
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed);
     vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
-    const std::uint32_t w = std::uint32_t(cfg.width), h = std::uint32_t(cfg.height);
-    VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * w * h);
-    {
-        const std::uint32_t pixels = w * h;
-        const bool quads = pixels % 4 == 0;
-        const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
-        const vk::DeviceSpan frames = upload.span(), planes = g.span(input);
+    const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
+    const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
+    const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
+    const vk::DeviceSpan frames = upload.span(), image = readback.span().sub(0, partials_offset);
+    const Method method = cfg.fusion.method;
+    VkDeviceAddress fused_planes = 0;
+    if (method == Method::ChannelSum || method == Method::Brovey || method == Method::Mean) {
+        fused_planes = record_pointwise(g, frames, cfg.want_fused ? std::optional(image) : std::nullopt);
+    } else {
+        const VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * pixels);
+        const vk::DeviceSpan planes = g.span(input);
         rec.dispatch("unpack", {frames, frames, planes, planes},
                      vk::PushConstants()
                          .u32(pixels)
@@ -97,30 +101,21 @@ void Plan::Impl::record() {
                          .u32(cfg.input == PixelType::U8)
                          .u32(quads),
                      grid.x, grid.y, std::uint32_t(cfg.sensors * cfg.frames));
-    }
-    rec.mark("unpack");
-    VkDeviceAddress fused_planes = input;  // passthrough: the frame is its own result
-    switch (cfg.fusion.method) {
-        case Method::Passthrough: break;
-        case Method::ChannelSum:
-        case Method::Brovey:
-        case Method::Mean: fused_planes = record_pointwise(g, input); break;
-        case Method::Laplacian: fused_planes = record_laplacian(g, input); break;
-        case Method::Wavelet: fused_planes = record_wavelet(g, input); break;
+        rec.mark("unpack");
+        fused_planes = method == Method::Laplacian ? record_laplacian(g, input)
+                       : method == Method::Wavelet ? record_wavelet(g, input)
+                                                   : input;  // passthrough: the frame is its own result
+        if (cfg.want_fused) {
+            const vk::DeviceSpan fused = g.span(fused_planes);
+            rec.dispatch("pack", {fused, fused, image, image},
+                         vk::PushConstants().u32(pixels).u32(std::uint32_t(cfg.channels)).u32(quads), grid.x, grid.y,
+                         std::uint32_t(cfg.sensors));
+            rec.mark("pack");
+        }
     }
     if (cfg.want_metrics)
         record_metrics(g, fused_planes, cfg.background_diff ? background.address() : 0,
                        readback.span().sub(partials_offset));
-    if (cfg.want_fused) {
-        const std::uint32_t pixels = w * h;
-        const bool quads = pixels % 4 == 0;
-        const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
-        const vk::DeviceSpan planes = g.span(fused_planes), image = readback.span().sub(0, partials_offset);
-        rec.dispatch("pack", {planes, planes, image, image},
-                     vk::PushConstants().u32(pixels).u32(std::uint32_t(cfg.channels)).u32(quads), grid.x, grid.y,
-                     std::uint32_t(cfg.sensors));
-        rec.mark("pack");
-    }
     rec.finish();
     stage_names = rec.stage_names();
 }

@@ -46,7 +46,9 @@ bool needs_device_addresses(const PlanConfig& cfg, const VkPhysicalDeviceLimits&
 // Records the fusion of the unpacked input planes (S*K*C planes of H x W,
 // plane (s*K + k)*C + c) and returns the address of the fused planes (S*C
 // planes of H x W, plane s*C + c).
-VkDeviceAddress record_pointwise(GraphBuilder& g, VkDeviceAddress input);
+// Brovey, channel-sum and the mean read the frames as uploaded and write the
+// fused image into `image` themselves (when given): no unpack, no pack.
+VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image);
 VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input);
 VkDeviceAddress record_wavelet(GraphBuilder& g, VkDeviceAddress input);
 
