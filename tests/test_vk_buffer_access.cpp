@@ -92,7 +92,7 @@ TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
         f.mode = mode;
         specs.push_back(f);
     }
-    const Shape shapes[] = {{96, 128, 3, 3, 2, PixelType::U8},  // planes of whole quads
+    const Shape shapes[] = {{96, 256, 3, 3, 2, PixelType::U8},  // planes of whole quads
                             {96, 128, 3, 3, 1, PixelType::F32},
                             {75, 77, 3, 3, 2, PixelType::U8},  // 5775 pixels: the scalar paths
                             {75, 77, 1, 2, 1, PixelType::F32}};

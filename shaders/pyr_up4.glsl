@@ -1,0 +1,54 @@
+// cv::pyrUp for 2 x 8 outputs at once: rows 2i, 2i + 1 and columns 2j .. 2j+7
+// from the 3 x 6 source samples (rows i - 1 reflected, i, i + 1 clamped;
+// columns j - 1 .. j + 4) they draw on, j a multiple of 4 in a plane whose
+// width cw is one too. pyr_up_block (common.glsl) lane by lane, with the same
+// sums in the same order. The including kernel binds the source planes as
+// `coarse` (plane_t) and `coarse4` (plane4_t) and has push fields cw and ch.
+
+struct Up4 {
+    vec4 even0, odd0;  // output row 2i: columns 2(j+t) and 2(j+t) + 1
+    vec4 even1, odd1;  // output row 2i + 1
+};
+
+// Source row r's samples j-1 .. j+4 as (left, quad, right), borders as OpenCV.
+void coarse_row(uint base, int r, int j, out float left, out vec4 q, out float right) {
+    uint row = base + uint(r * pc.cw);
+    q = vec4(BUF(coarse4).v[(row + uint(j)) / 4u]);
+    left = j == 0 ? q.y : float(BUF(coarse).v[row + uint(j - 1)]);
+    right = j + 4 < pc.cw ? float(BUF(coarse).v[row + uint(j + 4)]) : q.w;
+}
+
+// Horizontal pyrUp sums of one source row for even and odd output columns.
+void up_h(float left, vec4 q, float right, out vec4 even, out vec4 odd) {
+    vec4 l = vec4(left, q.xyz), r = vec4(q.yzw, right);
+    even = (1.0 * l + 6.0 * q) + 1.0 * r;
+    odd = 4.0 * q + 4.0 * r;
+}
+
+Up4 pyr_up_quad(uint base, int i, int j) {
+    ivec3 rows = ivec3(i == 0 ? min(1, pc.ch - 1) : i - 1, i, min(i + 1, pc.ch - 1));
+    vec4 e[3], o[3];
+    for (int a = 0; a < 3; ++a) {
+        float left, right;
+        vec4 q;
+        coarse_row(base, rows[a], j, left, q, right);
+        up_h(left, q, right, e[a], o[a]);
+    }
+    Up4 u;
+    if (pc.ch == 1) {
+        u.even0 = 8.0 * e[1] * (1.0 / 64.0);
+        u.odd0 = 8.0 * o[1] * (1.0 / 64.0);
+        u.even1 = u.even0;
+        u.odd1 = u.odd0;
+        return u;
+    }
+    u.even0 = ((1.0 * e[0] + 6.0 * e[1]) + 1.0 * e[2]) * (1.0 / 64.0);
+    u.odd0 = ((1.0 * o[0] + 6.0 * o[1]) + 1.0 * o[2]) * (1.0 / 64.0);
+    u.even1 = (4.0 * e[1] + 4.0 * e[2]) * (1.0 / 64.0);
+    u.odd1 = (4.0 * o[1] + 4.0 * o[2]) * (1.0 / 64.0);
+    return u;
+}
+
+// Output columns 2j .. 2j+7 of one row as two quads, from its even and odd sums.
+vec4 interleave_lo(vec4 even, vec4 odd) { return vec4(even.x, odd.x, even.y, odd.y); }
+vec4 interleave_hi(vec4 even, vec4 odd) { return vec4(even.z, odd.z, even.w, odd.w); }
