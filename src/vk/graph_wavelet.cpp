@@ -227,6 +227,23 @@ private:
     }
 
     void forward(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls, std::uint32_t planes) {
+        // Rows of whole quads: eight pairs per invocation, plane4 loads and stores.
+        if (periodization_ && ls.along_rows && ls.half_len % 8 == 0 && src.row_stride % 4 == 0 &&
+            src.plane_stride % 4 == 0 && dst.row_stride % 4 == 0 && dst.plane_stride % 4 == 0) {
+            const DeviceSpan in = g_.span(src.addr);
+            g_.rec.dispatch("dwt_rows4", {in, in, g_.span(dst.addr)},
+                            PushConstants()
+                                .i32(ls.n)
+                                .i32(ls.half_len)
+                                .i32(ls.lines)
+                                .i32(src.row_stride)
+                                .u32(src.plane_stride)
+                                .i32(dst.row_stride)
+                                .u32(dst.plane_stride),
+                            groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16), planes,
+                            taps_);
+            return;
+        }
         dispatch_line("dwt_forward", "lift_forward", src, dst, ls, planes);
     }
     void inverse(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls) {
