@@ -13,10 +13,14 @@
 // sums; taken about Y0, a constant image sums exact zeros (contrast exactly
 // 0) and a nearly flat one small deviations, not its level.
 //
+// Where rows are whole quads it also writes the fused image the host reads
+// (HWC float32, frames.glsl), which spares pack.comp its pass over the planes.
+//
 // An invocation walks ROWS rows down a strip 4 pixels wide, keeping the luma
 // of the rows above, at and below in registers: per row one plane4 per
 // channel (and per background channel) plus the two side neighbours' channels.
-#define BUFFERS(X) X(0, plane_t, img) X(1, plane4_t, img4) X(2, float, bg) X(3, vec4, bg4) X(4, vec4, partials)
+#define BUFFERS(X) X(0, plane_t, img) X(1, plane4_t, img4) X(2, float, bg) X(3, vec4, bg4) X(4, vec4, partials) \
+    X(5, float, image) X(6, vec4, image_quads)
 #include "bindings.glsl"
 layout(local_size_x = 256) in;
 layout(push_constant, std430) uniform Push {
@@ -27,7 +31,11 @@ layout(push_constant, std430) uniform Push {
     uint groups;  // workgroups per sensor
     uint has_bg;
     uint quads;   // width % 4 == 0: rows are whole plane4 elements
+    uint pixels;  // width * height
+    uint write_image;  // quads only: also pack the planes into the read-back image (pack.comp's work)
 } pc;
+#define VKFUSE_WRITES_IMAGES
+#include "frames.glsl"
 
 const uint WG = 256u;
 const int ROWS = 16;
@@ -128,6 +136,7 @@ void main() {
         for (int row = 0; row < ROWS; ++row) {
             int y = top + row;
             if (y >= pc.height) break;
+            if (pc.write_image != 0u) store_image_quad(s, uint(y * pc.width + x) / 4u, Quad(r, gr, b));
             vec4 below = at, nr = r, ng = gr, nb = b;
             if (y + 1 < pc.height) {
                 nr = quad(base, 0u, x, y + 1);

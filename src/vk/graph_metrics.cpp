@@ -14,18 +14,24 @@ std::uint32_t metric_groups(const PlanConfig& cfg) {
     return groups(items, kGroupSize);
 }
 
-void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials) {
+bool metrics_write_image(const PlanConfig& cfg) { return cfg.want_metrics && cfg.width % 4 == 0; }
+
+void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
+                    std::optional<DeviceSpan> image) {
     const std::uint32_t wgs = metric_groups(g.cfg);
     const Grid grid = grid_1d(wgs, 1);
     const DeviceSpan img = g.span(fused), bg = background ? g.span(background) : img;
-    g.rec.dispatch("metrics", {img, img, bg, bg, partials},
+    const DeviceSpan out = image ? *image : partials;
+    g.rec.dispatch("metrics", {img, img, bg, bg, partials, out, out},
                    PushConstants()
                        .i32(g.cfg.width)
                        .i32(g.cfg.height)
                        .u32(std::uint32_t(g.cfg.channels))
                        .u32(wgs)
                        .u32(background ? 1 : 0)
-                       .u32(g.cfg.width % 4 == 0),
+                       .u32(g.cfg.width % 4 == 0)
+                       .u32(std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height))
+                       .u32(image.has_value()),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
     g.rec.mark("metrics");
 }

@@ -89,7 +89,8 @@ void Plan::Impl::record() {
     const vk::DeviceSpan frames = upload.span(), image = readback.span().sub(0, partials_offset);
     const Method method = cfg.fusion.method;
     VkDeviceAddress fused_planes = 0;
-    if (method == Method::ChannelSum || method == Method::Brovey || method == Method::Mean) {
+    const bool pointwise = method == Method::ChannelSum || method == Method::Brovey || method == Method::Mean;
+    if (pointwise) {
         fused_planes = record_pointwise(g, frames, cfg.want_fused ? std::optional(image) : std::nullopt);
     } else {
         const VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * pixels);
@@ -105,7 +106,7 @@ void Plan::Impl::record() {
         fused_planes = method == Method::Laplacian ? record_laplacian(g, input)
                        : method == Method::Wavelet ? record_wavelet(g, input)
                                                    : input;  // passthrough: the frame is its own result
-        if (cfg.want_fused) {
+        if (cfg.want_fused && !vk::metrics_write_image(cfg)) {
             const vk::DeviceSpan fused = g.span(fused_planes);
             rec.dispatch("pack", {fused, fused, image, image},
                          vk::PushConstants().u32(pixels).u32(std::uint32_t(cfg.channels)).u32(quads), grid.x, grid.y,
@@ -113,9 +114,10 @@ void Plan::Impl::record() {
             rec.mark("pack");
         }
     }
+    const bool packs = cfg.want_fused && !pointwise && vk::metrics_write_image(cfg);
     if (cfg.want_metrics)
         record_metrics(g, fused_planes, cfg.background_diff ? background.address() : 0,
-                       readback.span().sub(partials_offset));
+                       readback.span().sub(partials_offset), packs ? std::optional(image) : std::nullopt);
     rec.finish();
     stage_names = rec.stage_names();
 }

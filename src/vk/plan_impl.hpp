@@ -71,7 +71,12 @@ std::uint32_t metric_groups(const PlanConfig& cfg);
 
 // Records the metric pass over the fused planes; sensor s's partials land at
 // partials, from float s * metric_groups * kMetricPartialFloats on.
-void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials);
+// `image`, given only where metrics_write_image(), receives the fused image
+// (HWC float32) from the same pass.
+void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
+                    std::optional<DeviceSpan> image = std::nullopt);
+// Whether the metric pass can write the read-back image too (rows of whole quads).
+bool metrics_write_image(const PlanConfig& cfg);
 
 }  // namespace vkfuse::vk
 
