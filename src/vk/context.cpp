@@ -181,6 +181,13 @@ VkPipeline Context::Impl::pipeline(const std::string& shader, std::span<const st
     return pipe;
 }
 
+const vk::KernelInterface& Context::Impl::kernel_interface(const std::string& shader) {
+    std::lock_guard lock(pipelines_mutex_);
+    auto it = interfaces_.find(shader);
+    if (it == interfaces_.end()) it = interfaces_.emplace(shader, vk::reflect_kernel(vk::shader_spirv(shader))).first;
+    return it->second;
+}
+
 VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
                                           std::span<const std::uint32_t> specialization) {
     auto spirv = vk::shader_spirv(shader);

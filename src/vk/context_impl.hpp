@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vk/api.hpp"
+#include "vk/kernel_interface.hpp"
 #include "vkfuse/context.hpp"
 
 namespace vkfuse {
@@ -46,6 +47,8 @@ struct Context::Impl {
     // specialization words are the values of constant_id 0, 1, ... (32 bits
     // each): one pipeline per shader and distinct values.
     VkPipeline pipeline(const std::string& shader, std::span<const std::uint32_t> specialization = {});
+    // The bindings and push-constant size an embedded shader declares (its SPIR-V).
+    const vk::KernelInterface& kernel_interface(const std::string& shader);
     // A new pipeline of an embedded shader with another layout, owned by the
     // caller (device probes that bind descriptor sets).
     VkPipeline create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
@@ -58,6 +61,7 @@ struct Context::Impl {
 private:
     std::mutex pipelines_mutex_;
     std::map<std::pair<std::string, std::vector<std::uint32_t>>, VkPipeline> pipelines_;
+    std::map<std::string, vk::KernelInterface> interfaces_;
 
     void create_instance(bool validation);
     void choose_device(int index);

@@ -1,5 +1,7 @@
 #include "vk/recorder.hpp"
 
+#include <string>
+
 
 #include "vkfuse/error.hpp"
 
@@ -40,6 +42,19 @@ void Recorder::barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPip
     memory_barrier(*ctx_.api, cmd_, src, src_access, dst, dst_access);
 }
 
+namespace {
+
+// The dispatch against what the kernel's SPIR-V declares (kernel_interface.hpp).
+void check_interface(Context::Impl& ctx, const std::string& kernel, std::size_t bindings, std::uint32_t push_bytes) {
+    const KernelInterface& k = ctx.kernel_interface(kernel);
+    if (k.bindings != bindings || k.push_bytes != push_bytes)
+        throw Error(ErrorKind::Device, "internal: " + kernel + " declares " + std::to_string(k.bindings) + " buffers and " +
+                                           std::to_string(k.push_bytes) + " push-constant bytes; the recorder gave " +
+                                           std::to_string(bindings) + " and " + std::to_string(push_bytes));
+}
+
+}  // namespace
+
 void Recorder::begin_dispatch(const std::string& shader, std::span<const std::uint32_t> specialization) {
     if (!first_)
         barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -51,6 +66,7 @@ void Recorder::begin_dispatch(const std::string& shader, std::span<const std::ui
 void Recorder::dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,
                         std::uint32_t gz, std::span<const std::uint32_t> specialization) {
     if (gx == 0 || gy == 0 || gz == 0) return;
+    check_interface(ctx_, shader + variant_, 0, push.size());
     begin_dispatch(shader, specialization);
     auto& api = *ctx_.api;
     api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
@@ -71,6 +87,7 @@ void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceS
         api.vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.layout, 0, 1, &set, 0, nullptr);
     }
     push.append(scalars);
+    check_interface(ctx_, shader + variant_, addressed_ ? 0 : buffers.size(), push.size());
     if (push.size() > 0)
         api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
     api.vkCmdDispatch(cmd_, gx, gy, gz);

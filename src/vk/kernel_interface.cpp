@@ -1,0 +1,81 @@
+#include "vk/kernel_interface.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::vk {
+namespace {
+
+// The few SPIR-V opcodes, decorations and storage classes read here.
+constexpr std::uint32_t kMagic = 0x07230203;
+constexpr std::uint32_t OpTypeInt = 21, OpTypeFloat = 22, OpTypeVector = 23, OpTypeStruct = 30, OpTypePointer = 32,
+                        OpVariable = 59, OpDecorate = 71, OpMemberDecorate = 72;
+constexpr std::uint32_t DecorationBinding = 33, DecorationOffset = 35;
+constexpr std::uint32_t StoragePushConstant = 9, StoragePhysicalBuffer = 5349;
+
+[[noreturn]] void bad(const std::string& why) { throw Error(ErrorKind::Device, "internal: kernel SPIR-V: " + why); }
+
+}  // namespace
+
+KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
+    if (spirv.size() < 5 || spirv[0] != kMagic) bad("no SPIR-V header");
+    std::map<std::uint32_t, std::uint32_t> type_bytes;         // every sized type seen
+    std::map<std::uint32_t, std::vector<std::uint32_t>> members;  // struct id -> member types
+    std::map<std::uint32_t, std::map<std::uint32_t, std::uint32_t>> offsets;  // struct -> member -> offset
+    std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> pointers;  // id -> (storage class, pointee)
+    std::map<std::uint32_t, std::uint32_t> bindings;           // variable id -> binding
+    std::uint32_t push_pointer = 0;
+    for (std::size_t at = 5; at < spirv.size();) {
+        const std::uint32_t count = spirv[at] >> 16, op = spirv[at] & 0xffff;
+        if (count == 0 || at + count > spirv.size()) bad("truncated instruction");
+        const std::uint32_t* w = &spirv[at];
+        switch (op) {
+            case OpTypeInt:
+            case OpTypeFloat: type_bytes[w[1]] = w[2] / 8; break;
+            case OpTypeVector:
+                if (type_bytes.count(w[2])) type_bytes[w[1]] = type_bytes[w[2]] * w[3];
+                break;
+            case OpTypeStruct: members[w[1]].assign(w + 2, w + count); break;
+            case OpTypePointer:
+                pointers[w[1]] = {w[2], w[3]};
+                if (w[2] == StoragePhysicalBuffer) type_bytes[w[1]] = 8;
+                break;
+            case OpVariable:
+                if (w[3] == StoragePushConstant) push_pointer = w[1];
+                break;
+            case OpDecorate:
+                if (count >= 4 && w[2] == DecorationBinding) bindings[w[1]] = w[3];
+                break;
+            case OpMemberDecorate:
+                if (count >= 5 && w[3] == DecorationOffset) offsets[w[1]][w[2]] = w[4];
+                break;
+            default: break;
+        }
+        at += count;
+    }
+    KernelInterface k;
+    std::set<std::uint32_t> used;
+    for (const auto& [variable, binding] : bindings) used.insert(binding);
+    k.bindings = std::uint32_t(used.size());
+    if (!used.empty() && *used.rbegin() + 1 != k.bindings) bad("bindings are not 0 .. n-1");
+    if (push_pointer) {
+        const auto p = pointers.find(push_pointer);
+        if (p == pointers.end() || !members.count(p->second.second)) bad("push constants are not a block");
+        const std::uint32_t block = p->second.second;
+        const auto& types = members[block];
+        for (std::uint32_t m = 0; m < types.size(); ++m) {
+            const auto size = type_bytes.find(types[m]);
+            const auto offset = offsets[block].find(m);
+            if (size == type_bytes.end() || offset == offsets[block].end()) bad("push constant member of unknown size");
+            k.push_bytes = std::max(k.push_bytes, offset->second + size->second);
+        }
+    }
+    return k;
+}
+
+}  // namespace vkfuse::vk

@@ -1,0 +1,21 @@
+// What a kernel's SPIR-V says it takes: its descriptor bindings and the size of
+// its push-constant block. Recorder::dispatch checks every dispatch against it,
+// so a kernel's GLSL declaration (shaders/bindings.glsl's BUFFERS list, its
+// Push block) and what the C++ side passes can never drift apart unnoticed:
+// every test that records the kernel fails first.
+#pragma once
+#include <cstdint>
+#include <span>
+
+namespace vkfuse::vk {
+
+struct KernelInterface {
+    std::uint32_t bindings = 0;    // storage buffers of set 0 (bindings 0 .. n-1)
+    std::uint32_t push_bytes = 0;  // end of the push-constant block's last member
+};
+
+// Reads the interface from SPIR-V words. Throws Error(Device) on words that
+// are not SPIR-V or bindings that are not 0 .. n-1.
+KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv);
+
+}  // namespace vkfuse::vk

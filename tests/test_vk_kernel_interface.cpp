@@ -1,0 +1,48 @@
+// Every kernel's interface is read from its SPIR-V (vk/kernel_interface.hpp)
+// and each dispatch is checked against it. These tests pin the reader to
+// kernels whose declarations are known, in both binding variants.
+#include <gtest/gtest.h>
+
+#include "vk/kernel_interface.hpp"
+#include "vk/shader_registry.hpp"
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+TEST(KernelInterface, BoundVariantsDeclareTheirBuffersAndScalars) {
+    // pack.comp: 4 buffers; pixels, channels, quads.
+    const vk::KernelInterface pack = vk::reflect_kernel(vk::shader_spirv("pack"));
+    EXPECT_EQ(pack.bindings, 4u);
+    EXPECT_EQ(pack.push_bytes, 12u);
+    // metrics.comp: 7 buffers; 8 scalars.
+    const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16"));
+    EXPECT_EQ(metrics.bindings, 7u);
+    EXPECT_EQ(metrics.push_bytes, 32u);
+}
+
+TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
+    // The same lists as 8-byte addresses before the scalars, no bindings.
+    const vk::KernelInterface pack = vk::reflect_kernel(vk::shader_spirv("pack_addr"));
+    EXPECT_EQ(pack.bindings, 0u);
+    EXPECT_EQ(pack.push_bytes, 4u * 8u + 12u);
+    const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16_addr"));
+    EXPECT_EQ(metrics.bindings, 0u);
+    EXPECT_EQ(metrics.push_bytes, 7u * 8u + 32u);
+}
+
+TEST(KernelInterface, KernelsThatStillTakeAddressesDeclareThem) {
+    // rule_fuse.comp: two buffer references, then ten 4-byte scalars.
+    const vk::KernelInterface rule = vk::reflect_kernel(vk::shader_spirv("rule_fuse"));
+    EXPECT_EQ(rule.bindings, 0u);
+    EXPECT_EQ(rule.push_bytes, 2u * 8u + 10u * 4u);
+}
+
+TEST(KernelInterface, RejectsWordsThatAreNotSpirv) {
+    const std::uint32_t words[] = {1, 2, 3, 4, 5, 6};
+    EXPECT_THROW(vk::reflect_kernel(words), Error);
+    EXPECT_THROW(vk::reflect_kernel({}), Error);
+}
+
+}  // namespace
+}  // namespace vkfuse::test
