@@ -17,6 +17,7 @@
 #include "report_table.hpp"
 #include "usage_error.hpp"
 #include "vk/copy_bandwidth.hpp"
+#include "floor_model.hpp"
 #include "vk/kernel_access.hpp"
 #include "vkfuse/error.hpp"
 
@@ -142,7 +143,10 @@ CellResult measure(Environment& env, const Options& o, const Cell& c, const Inpu
         r.failure = e.what();
     }
     if (c.backend == Backend::Vulkan && env.copy) r.copy_bandwidth = env.copy->bytes_per_second();
-    if (c.backend == Backend::Vulkan && env.access) r.kernel_copy_ns = env.access->address_ns;
+    if (c.backend == Backend::Vulkan && env.access) {
+        r.kernel_copy_ns = env.access->address_ns;
+        r.floor_ms = floor_ms(ideal_pipeline(c, false), *env.access);  // the bench uploads float32 frames
+    }
     r.load_average = load;
     return r;
 }

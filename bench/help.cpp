@@ -45,7 +45,9 @@ Output:
                     mean_abs_err, samples_over_1e-5, checked_sensors,
                     metric_rel_err{sharpness, contrast, background_diff}, kernel_ms,
                     bytes_per_cycle, copy_bandwidth_gbs, bandwidth_fraction,
-                    kernel_copy_ns_per_float, peer, peer_failure, peer_median_ms,
+                    kernel_copy_ns_per_float, floor_ms (the ideal pipeline for the
+                    cell at this device's probed costs), floor_fraction
+                    (floor_ms / median_ms), peer, peer_failure, peer_median_ms,
                     peer_ms_per_sensor, peer_runs, peer_max_abs_err,
                     peer_mean_abs_err, peer_metric_rel_err,
                     peer_speedup (peer_median_ms / median_ms)

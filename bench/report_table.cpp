@@ -27,9 +27,9 @@ std::string peer_columns(const CellResult& r) {
 }  // namespace
 
 void print_table_header(std::FILE* out) {
-    std::fprintf(out, "%-22s %-6s %-4s %-6s %2s %3s %9s %9s %9s %5s %9s %8s %9s %9s %9s %6s %6s %10s %9s\n", "method",
+    std::fprintf(out, "%-22s %-6s %-4s %-6s %2s %3s %9s %9s %9s %5s %9s %8s %9s %9s %9s %6s %6s %10s %9s %8s %5s\n", "method",
                  "backend", "prec", "size", "K", "S", "median_ms", "min_ms", "max_ms", "runs", "sensor/s", "Mpix/s", "max|err|", "mean|err|",
-                 "metric_re", ">1e-5", "bw%", "peer_ms", "peer/this");
+                 "metric_re", ">1e-5", "bw%", "peer_ms", "peer/this", "floor_ms", "floor");
 }
 
 void print_row(std::FILE* out, const CellResult& r) {
@@ -41,10 +41,12 @@ void print_row(std::FILE* out, const CellResult& r) {
         return;
     }
     const auto bw = r.bandwidth_fraction();
-    std::fprintf(out, "%9.2f %9.2f %9.2f %4d%s %9.2f %8.2f %9.2e %9.2e %9.2e %6zu %6s %s\n", r.timing.median_ms,
+    const auto floor = r.floor_fraction();
+    std::fprintf(out, "%9.2f %9.2f %9.2f %4d%s %9.2f %8.2f %9.2e %9.2e %9.2e %6zu %6s %s %s\n", r.timing.median_ms,
                  r.timing.min_ms, r.timing.max_ms, r.timing.runs, r.timing.capped ? "*" : " ", r.throughput(),
                  r.mpixels_per_second(), r.error.max_abs, r.error.mean_abs(), r.metric_error.worst(),
-                 r.error.over_tolerance, bw ? fmt("%5.2f%%", 100 * *bw).c_str() : "-", peer_columns(r).c_str());
+                 r.error.over_tolerance, bw ? fmt("%5.2f%%", 100 * *bw).c_str() : "-", peer_columns(r).c_str(),
+                 floor ? (fmt("%8.2f", *r.floor_ms) + fmt(" %5.2f", *floor)).c_str() : "       -     -");
     if (r.stages.empty()) return;
     std::string line = "    stages (median ms):";
     for (const auto& s : r.stages) line += " " + s.name + fmt(" %.2f", s.median_ms);

@@ -18,4 +18,9 @@ std::optional<double> CellResult::peer_speedup() const {
     return *p / timing.median_ms;
 }
 
+std::optional<double> CellResult::floor_fraction() const {
+    if (!floor_ms || !measured() || timing.median_ms <= 0) return std::nullopt;
+    return *floor_ms / timing.median_ms;
+}
+
 }  // namespace vkfuse::bench

@@ -42,6 +42,7 @@ struct CellResult {
     std::optional<double> bytes_per_cycle;  // uploads + readback, Vulkan only
     std::optional<double> copy_bandwidth;   // bytes/s of a device buffer copy, this run
     std::optional<double> kernel_copy_ns;   // ns per float a kernel copies via device addresses, this run
+    std::optional<double> floor_ms;         // the ideal pipeline on this device (floor_model.hpp), Vulkan only
     std::optional<PeerResult> peer;
 
     bool measured() const { return cell.skip.empty() && failure.empty(); }
@@ -54,6 +55,7 @@ struct CellResult {
     // The peer's time for this cell's S sensors (it runs one; Python fuses sensors one after another).
     std::optional<double> peer_cell_ms() const;
     std::optional<double> peer_speedup() const;  // peer_cell_ms / median_ms
+    std::optional<double> floor_fraction() const;  // floor_ms / median_ms
 };
 
 }  // namespace vkfuse::bench

@@ -1,0 +1,27 @@
+// The device's floor under a cell: what the ideal pipeline for the cell's
+// method and shape must do (memory accesses, floating-point work, dispatches),
+// priced at the costs the probe kernels measured this run
+// (vk/kernel_access.hpp). floor_ms / median_ms says how close a cell runs to
+// what the device allows any implementation.
+#pragma once
+#include "cell.hpp"
+#include "vk/kernel_access.hpp"
+
+namespace vkfuse::bench {
+
+struct PipelineCost {
+    double accesses = 0;  // floats read or written (8-bit input: 4 samples per word)
+    double flops = 0;     // a multiply-add is 2
+    int dispatches = 0;
+};
+
+// The ideal pipeline of one cycle of `c` (all S sensors), float32 or 8-bit
+// frames, scored against a background (as the bench's cells are).
+PipelineCost ideal_pipeline(const Cell& c, bool eight_bit_input);
+
+// Its time on the probed device: accesses at half a bound vec4 copy's cost per
+// float (a copy is a read and a write), flops at the multiply-add rate, and one
+// small dispatch each.
+double floor_ms(const PipelineCost& p, const vk::KernelAccess& device);
+
+}  // namespace vkfuse::bench
