@@ -24,6 +24,12 @@
 namespace vkfuse::bench {
 namespace {
 
+#ifdef VKFUSE_BENCH_CPP_PEER
+constexpr const char* kCppPeer = VKFUSE_BENCH_CPP_PEER;
+#else
+constexpr const char* kCppPeer = "";  // OpenCV was not found: PeerRunner::program says so
+#endif
+
 // What the run found once, before the first cell.
 struct Environment {
     std::optional<Context> vulkan;
@@ -32,6 +38,7 @@ struct Environment {
     std::optional<vk::CopyBandwidth> copy;
     std::optional<vk::KernelAccess> access;
     std::optional<PeerRunner> peers;
+    std::optional<PeerRunner> cpp_peer;  // bench/peers/opencv_peer.cpp
 };
 
 bool wants_vulkan(const Options& o, const std::vector<Cell>& cells) {
@@ -69,7 +76,10 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
                 env.no_access = e.what();
             }
     }
-    if (o.peers && !o.probe) env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
+    if (o.peers && !o.probe) {
+        env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
+        env.cpp_peer = PeerRunner::program(kCppPeer, Method::Laplacian);
+    }
     return env;
 }
 
@@ -111,6 +121,10 @@ void print_environment(const Environment& env, const Options& o, double budget) 
         std::printf("peers: %s %s\n", env.peers->python().c_str(), VKFUSE_BENCH_PEER_SCRIPT);
     else
         std::printf("peers: not available (%s); peer columns stay empty\n", env.peers->why_not().c_str());
+    if (o.peers && env.cpp_peer->available())
+        std::printf("C++ peer: %s (laplacian)\n", kCppPeer);
+    else if (o.peers)
+        std::printf("C++ peer: %s\n", env.cpp_peer->why_not().c_str());
     const bool fp16 = env.vulkan && env.vulkan->device().fp16_storage;
     std::printf("precision: fp32 (fp16 storage %s; --precision fp16 or --full adds its cells); memory limit %.1f GiB\n",
                 fp16 ? "supported" : "not supported by the device", budget / (1024.0 * 1024.0 * 1024.0));
@@ -176,12 +190,19 @@ void run_workload(Environment& env, const Options& o, std::vector<Cell> cells, s
     const std::vector<Expected> expected = expected_results(in, first.fusion());
     std::optional<PeerResult> peer;
     if (env.peers && env.peers->available()) peer = env.peers->run(first, in, expected.front(), o.cell_seconds, o.runs);
+    std::optional<PeerResult> cpp_peer;
+    if (env.cpp_peer && env.cpp_peer->available() && env.cpp_peer->runs(first))
+        cpp_peer = env.cpp_peer->run(first, in, expected.front(), o.cell_seconds, o.runs);
     for (const auto& c : cells) {
         CellResult r = c.skip.empty() ? measure(env, o, c, in, expected) : unmeasured(c, env);
-        if (r.measured()) r.peer = peer;
+        if (r.measured()) {
+            r.peer = peer;
+            r.cpp_peer = cpp_peer;
+        }
         report(std::move(r), out);
     }
     if (peer) print_peer(stdout, *peer);
+    if (cpp_peer) print_peer(stdout, *cpp_peer);
 }
 
 void print_cells(const std::vector<Cell>& cells) {

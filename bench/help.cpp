@@ -50,7 +50,9 @@ Output:
                     (floor_ms / median_ms), peer, peer_failure, peer_median_ms,
                     peer_ms_per_sensor, peer_runs, peer_max_abs_err,
                     peer_mean_abs_err, peer_metric_rel_err,
-                    peer_speedup (peer_median_ms / median_ms)
+                    peer_speedup (peer_median_ms / median_ms); for Laplacian
+                    cells the OpenCV C++ pipeline: cpp_peer, cpp_peer_failure,
+                    cpp_peer_median_ms, cpp_peer_max_abs_err, cpp_peer_speedup
   --plot FILE.svg   log-log time per sensor-cycle against max abs error,
                     coloured by method, marked by backend and precision
   --profile         per-stage GPU times from Plan::profile() (median over runs)
@@ -62,7 +64,7 @@ Measurement:
                     (default 60) gets fewer runs, never under 3 (marked * / runs_capped).
   --device N        Vulkan device index (default: the best usable one)
   --mem-limit GiB   skip cells estimated to need more (default 80% of available memory)
-  --no-peers        do not run the Python peers
+  --no-peers        do not run the peers (Python, and the OpenCV C++ one)
   --python PATH     the peers' interpreter (default /usr/bin/python3, then python3)
   --list            print the cells (with estimated memory and skip reasons), run nothing
   --probe           measure the Vulkan device only (copy bandwidth, kernel access

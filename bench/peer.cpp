@@ -19,9 +19,9 @@ double number_field(const json::Value& v, std::string_view key) {
     return f->number();
 }
 
-std::vector<std::string> peer_command(const std::string& python, const std::string& script, const Cell& cell,
-                                      const std::filesystem::path& dir, int frames, double max_seconds, int runs) {
-    std::vector<std::string> argv{python, script, "--method", std::string(to_string(cell.method.method))};
+std::vector<std::string> peer_command(std::vector<std::string> argv, const Cell& cell, const std::filesystem::path& dir,
+                                      int frames, double max_seconds, int runs) {
+    argv.insert(argv.end(), {"--method", std::string(to_string(cell.method.method))});
     if (cell.method.method == Method::Wavelet) argv.insert(argv.end(), {"--wavelet", std::string(to_string(cell.method.wavelet))});
     if (cell.levels > 0) argv.insert(argv.end(), {"--levels", std::to_string(cell.levels)});
     argv.insert(argv.end(), {"--runs", std::to_string(runs), "--max-seconds", std::to_string(max_seconds),
@@ -63,10 +63,23 @@ PeerRunner::PeerRunner(std::string script, const std::string& python) : script_(
         const auto r = run_process({candidate, "-c", "import numpy, pywt, cv2"});
         if (r.started && r.exit_code == 0) {
             python_ = candidate;
+            prefix_ = {python_, script_};
             return;
         }
         why_not_ += (why_not_.empty() ? "" : "; ") + candidate + ": " + (r.started ? last_line(r.err) : "not found");
     }
+}
+
+PeerRunner PeerRunner::program(const std::string& program, Method method) {
+    PeerRunner r;
+    r.only_ = method;
+    if (program.empty())
+        r.why_not_ = "not built (OpenCV not found when configured; libopencv-dev provides it)";
+    else if (!std::filesystem::exists(program))
+        r.why_not_ = program + " not found";
+    else
+        r.prefix_ = {program};
+    return r;
 }
 
 PeerResult PeerRunner::run(const Cell& cell, const Inputs& in, const Expected& sensor0, double max_seconds,
@@ -77,8 +90,8 @@ PeerResult PeerRunner::run(const Cell& cell, const Inputs& in, const Expected& s
         for (int k = 0; k < in.frames(); ++k)
             io::write_image((dir.path() / ("frame" + std::to_string(k) + ".npy")).string(), in.frame(sensor0.sensor, k));
         io::write_image((dir.path() / "background.npy").string(), in.background(sensor0.sensor));
-        const auto p = run_process(peer_command(python_, script_, cell, dir.path(), in.frames(), max_seconds, runs));
-        if (!p.started) throw std::runtime_error(python_ + " could not be started");
+        const auto p = run_process(peer_command(prefix_, cell, dir.path(), in.frames(), max_seconds, runs));
+        if (!p.started) throw std::runtime_error(prefix_.front() + " could not be started");
         if (p.exit_code != 0) throw std::runtime_error("exit " + std::to_string(p.exit_code) + ": " + last_line(p.err));
         read_answer(p.out, dir.path() / "fused.npy", sensor0, r);
     } catch (const std::exception& e) {  // vkfuse::Error (files) and std::runtime_error alike

@@ -1,7 +1,10 @@
-// The Python peers (bench/peers/pipelines.py) run on the same frames as
-// vkfuse, so speed and error are compared within one run.
+// The peers run on the same frames as vkfuse, so speed and error are compared
+// within one run: the Python pipelines (bench/peers/pipelines.py) and the C++
+// one written with OpenCV's API (bench/peers/opencv_peer.cpp, Laplacian).
 #pragma once
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "cell.hpp"
 #include "expected.hpp"
@@ -17,8 +20,12 @@ public:
     // python3-opencv), then python3 on PATH. Without one (or without the
     // script) available() is false.
     PeerRunner(std::string script, const std::string& python);
+    // The C++ peer at `program` (empty: not built), which runs `method` only.
+    static PeerRunner program(const std::string& program, Method method);
 
-    bool available() const { return !python_.empty(); }
+    bool available() const { return !prefix_.empty(); }
+    // Whether it runs the cell's method.
+    bool runs(const Cell& cell) const { return !only_ || cell.method.method == *only_; }
     const std::string& python() const { return python_; }
     const std::string& why_not() const { return why_not_; }
 
@@ -27,8 +34,11 @@ public:
     PeerResult run(const Cell& cell, const Inputs& in, const Expected& sensor0, double max_seconds, int runs) const;
 
 private:
+    PeerRunner() = default;
     std::string script_;
     std::string python_;
+    std::vector<std::string> prefix_;  // the command before the arguments: interpreter and script, or the program
+    std::optional<Method> only_;
     std::string why_not_;
 };
 

@@ -93,6 +93,12 @@ void add_peer(Members& o, const CellResult& r) {
     o.add("peer_mean_abs_err", peer_value(p ? p->error.mean_abs() : 0));
     o.add("peer_metric_rel_err", p ? metric_errors(p->metric_error) : Value(nullptr));
     o.add("peer_speedup", r.peer_speedup());
+    const PeerResult* c = r.cpp_peer && r.cpp_peer->failure.empty() ? &*r.cpp_peer : nullptr;
+    o.add("cpp_peer", text_if(c, c ? c->name : ""));
+    o.add("cpp_peer_failure", text_if(r.cpp_peer && !r.cpp_peer->failure.empty(), r.cpp_peer ? r.cpp_peer->failure : ""));
+    o.add("cpp_peer_median_ms", r.cpp_peer_cell_ms());
+    o.add("cpp_peer_max_abs_err", c ? std::optional<double>(c->error.max_abs) : std::nullopt);
+    o.add("cpp_peer_speedup", r.cpp_peer_speedup());
 }
 
 }  // namespace

@@ -47,6 +47,9 @@ void print_row(std::FILE* out, const CellResult& r) {
                  r.mpixels_per_second(), r.error.max_abs, r.error.mean_abs(), r.metric_error.worst(),
                  r.error.over_tolerance, bw ? fmt("%5.2f%%", 100 * *bw).c_str() : "-", peer_columns(r).c_str(),
                  floor ? (fmt("%8.2f", *r.floor_ms) + fmt(" %5.2f", *floor)).c_str() : "       -     -");
+    if (const auto cpp = r.cpp_peer_speedup())
+        std::fprintf(out, "    C++ peer (%s): %.2f ms, %.2fx this cell's time\n", r.cpp_peer->name.c_str(),
+                     *r.cpp_peer_cell_ms(), *cpp);
     if (r.stages.empty()) return;
     std::string line = "    stages (median ms):";
     for (const auto& s : r.stages) line += " " + s.name + fmt(" %.2f", s.median_ms);

@@ -43,7 +43,8 @@ struct CellResult {
     std::optional<double> copy_bandwidth;   // bytes/s of a device buffer copy, this run
     std::optional<double> kernel_copy_ns;   // ns per float a kernel copies via device addresses, this run
     std::optional<double> floor_ms;         // the ideal pipeline on this device (floor_model.hpp), Vulkan only
-    std::optional<PeerResult> peer;
+    std::optional<PeerResult> peer;      // the Python pipeline of the method
+    std::optional<PeerResult> cpp_peer;  // the OpenCV C++ pipeline (Laplacian cells)
 
     bool measured() const { return cell.skip.empty() && failure.empty(); }
     double cycles_per_second() const { return timing.median_ms > 0 ? 1000.0 / timing.median_ms : 0; }
@@ -56,6 +57,8 @@ struct CellResult {
     std::optional<double> peer_cell_ms() const;
     std::optional<double> peer_speedup() const;  // peer_cell_ms / median_ms
     std::optional<double> floor_fraction() const;  // floor_ms / median_ms
+    std::optional<double> cpp_peer_cell_ms() const;
+    std::optional<double> cpp_peer_speedup() const;  // cpp_peer_cell_ms / median_ms
 };
 
 }  // namespace vkfuse::bench
