@@ -2,15 +2,20 @@
 # vkfuse quick start: installs what is missing (Debian 12, as root), builds, then
 #   run   the main job: `vkfuse run` on the simulated DIGIT (or a real sensor when supported), best Vulkan device else CPU
 #   test  the whole test suite, Vulkan tests included (on lavapipe when no GPU)
+#   bench the default vkfuse-bench run with its peers (PyWavelets, OpenCV + numpy, OpenCV C++),
+#         writing bench.json
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(cmake make g++ pkg-config libpng-dev libgtest-dev libvulkan-dev libvulkan1
           mesa-vulkan-drivers vulkan-validationlayers glslang-tools)
 
+# What the bench's peers need: the Python pipelines and the OpenCV C++ one.
+PEER_PACKAGES=(python3-numpy python3-pywt python3-opencv libopencv-dev)
+
 install_missing() {
     local missing=()
-    for p in "${PACKAGES[@]}"; do
+    for p in "$@"; do
         dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
     done
     [ ${#missing[@]} -eq 0 ] && return
@@ -70,7 +75,9 @@ run_tests() {
 }
 
 case "${1:-}" in
-    run) install_missing; lavapipe_from_backports; build; run_main_job ;;
-    test) install_missing; lavapipe_from_backports; build; run_tests ;;
-    *) echo "usage: bash tools/quickstart.sh run|test" >&2; exit 2 ;;
+    run) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build; run_main_job ;;
+    test) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build; run_tests ;;
+    bench) install_missing "${PACKAGES[@]}" "${PEER_PACKAGES[@]}"; lavapipe_from_backports; build
+           ./build/bench/vkfuse-bench --json bench.json ;;
+    *) echo "usage: bash tools/quickstart.sh run|test|bench" >&2; exit 2 ;;
 esac
