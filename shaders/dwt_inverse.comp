@@ -37,8 +37,8 @@ void main() {
         [[unroll]] for (int p = 0; p < 2; ++p) {
             Dot2 acc = Dot2(0.0, 0.0);
             [[unroll]] for (int j = 0; j < Hf; ++j) {  // coefficient o + start - j is window slot b + Hf - 1 - j
-                dot2_add(acc, rec_lo(2 * j + p), low[b + Hf - 1 - j]);
-                dot2_add(acc, rec_hi(2 * j + p), high[b + Hf - 1 - j]);
+                TAP_ADD(acc, rec_lo(2 * j + p), low[b + Hf - 1 - j]);
+                TAP_ADD(acc, rec_hi(2 * j + p), high[b + Hf - 1 - j]);
             }
             int m = 2 * (o0 + b) + p + s;
             if (m >= 2 * M) m -= 2 * M;

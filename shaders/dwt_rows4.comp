@@ -52,8 +52,8 @@ void main() {
     [[unroll]] for (int b = 0; b < PAIRS; ++b) {
         Dot2 l = Dot2(0.0, 0.0), h = Dot2(0.0, 0.0);
         [[unroll]] for (int j = 0; j < F; ++j) {  // x[F/2 + 2o - j] is window sample 2b + F - 1 - j
-            dot2_add(l, dec_lo(j), win[SHIFT + 2 * b + F - 1 - j]);
-            dot2_add(h, dec_hi(j), win[SHIFT + 2 * b + F - 1 - j]);
+            TAP_ADD(l, dec_lo(j), win[SHIFT + 2 * b + F - 1 - j]);
+            TAP_ADD(h, dec_hi(j), win[SHIFT + 2 * b + F - 1 - j]);
         }
         lo[b] = dot2_result(l);
         hi[b] = dot2_result(h);
