@@ -1,27 +1,21 @@
-// Shared declarations for every vkfuse kernel. Buffers are reached through
-// device addresses carried in push constants, so no kernel needs descriptor
-// sets: a Plan just records addresses and sizes.
-#extension GL_EXT_buffer_reference : require
-
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { float v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Words { uint v[]; };
-
-// Planes: the buffers a plan keeps on the device between kernels (unpacked
-// frames, pyramid levels, wavelet coefficients, fused planes). Each kernel is
-// built twice: as float32, and with VKFUSE_FP16_STORAGE defined, where planes
-// hold float16 and half the bytes (PlanConfig::precision). Arithmetic is
-// float32 in both; TO_PLANE() rounds a result to the storage type. Uploads,
-// backgrounds, metric partials and read-back stay Floats.
+// Shared declarations for every vkfuse kernel. A kernel's buffers are declared
+// in its own BUFFERS list (bindings.glsl).
+//
+// Planes: what a plan keeps on the device between kernels (unpacked frames,
+// pyramid levels, wavelet coefficients, fused planes), as plane_t samples or
+// plane4_t quads. Each kernel is built as float32, and with
+// VKFUSE_FP16_STORAGE defined, where planes hold float16 and half the bytes
+// (PlanConfig::precision). Arithmetic is float32 in both; TO_PLANE() and
+// TO_PLANE4() round a result to the storage type. Uploads, backgrounds, metric
+// partials and read-back stay float32.
 #ifdef VKFUSE_FP16_STORAGE
 #extension GL_EXT_shader_16bit_storage : require
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
-layout(buffer_reference, std430, buffer_reference_align = 2) buffer Planes { float16_t v[]; };
 #define TO_PLANE(x) float16_t(x)
 #define plane_t float16_t
 #define plane4_t f16vec4
 #define TO_PLANE4(x) f16vec4(x)
 #else
-#define Planes Floats
 #define TO_PLANE(x) (x)
 #define plane_t float
 #define plane4_t vec4
@@ -71,39 +65,6 @@ void rule_add(inout RuleState st, uint rule, uint k, float v) {
 
 float rule_result(RuleState st, uint rule, uint frames) {
     return rule == RULE_MEAN ? st.sum / float(frames) : st.pick;
-}
-
-// cv::pyrUp at the 2 x 2 outputs (2i + a, 2j + b), a, b in {0, 1} (as
-// out[a][b]), from the 3 x 3 source samples they all draw on: 9 loads for 4
-// outputs. Per axis an even output weighs source samples (i - 1, i, i + 1) by
-// (1, 6, 1)/8, an odd one (i, i + 1) by (4, 4)/8; the left/top border
-// reflects (reflect-101), the right/bottom one repeats the last sample, a
-// length-1 axis repeats its only sample (8/8): OpenCV's own edge handling.
-// Horizontal sums per source row first, then the vertical combination, as
-// OpenCV adds them.
-float pyr_up_h(vec3 v, int parity, int n) {
-    if (n == 1) return 8.0 * v.y;
-    return parity == 0 ? (1.0 * v.x + 6.0 * v.y) + 1.0 * v.z : 4.0 * v.y + 4.0 * v.z;
-}
-
-mat2 pyr_up_block(Planes src, uint base, int sw, int sh, int i, int j) {
-    // Source rows / columns: even outputs read (i - 1 reflected, i, i + 1
-    // clamped), odd outputs (i, i + 1 clamped): the three cover both.
-    ivec3 r = ivec3(i == 0 ? min(1, sh - 1) : i - 1, i, min(i + 1, sh - 1));
-    ivec3 c = ivec3(j == 0 ? min(1, sw - 1) : j - 1, j, min(j + 1, sw - 1));
-    vec3 h_even, h_odd;  // horizontal sums per source row for even / odd output columns
-    for (int a = 0; a < 3; ++a) {
-        uint row = base + uint(r[a] * sw);
-        vec3 v = vec3(src.v[row + uint(c.x)], src.v[row + uint(c.y)], src.v[row + uint(c.z)]);
-        h_even[a] = pyr_up_h(v, 0, sw);
-        h_odd[a] = pyr_up_h(v, 1, sw);
-    }
-    mat2 out_;
-    out_[0][0] = pyr_up_h(h_even, 0, sh) * (1.0 / 64.0);
-    out_[0][1] = pyr_up_h(h_odd, 0, sh) * (1.0 / 64.0);
-    out_[1][0] = pyr_up_h(h_even, 1, sh) * (1.0 / 64.0);
-    out_[1][1] = pyr_up_h(h_odd, 1, sh) * (1.0 / 64.0);
-    return out_;
 }
 
 // Compensated dot products (Ogita, Rump and Oishi's Dot2): each product's

@@ -22,12 +22,12 @@ void main() {
     if (o0 >= pc.half_len || line >= pc.lines) return;
     float win[WINDOW];
     [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)
-        win[i] = pc.src.v[src_at(plane, line, window_sample(o0, i, pc.half_len, pc.n))];
+        win[i] = BUF(src).v[src_at(plane, line, window_sample(o0, i, pc.half_len, pc.n))];
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         int o = o0 + b;
         if (o >= pc.half_len) break;
         vec2 lo_hi = analyse(win, b);
-        pc.dst.v[dst_at(plane, line, o)] = TO_PLANE(lo_hi.x);
-        pc.dst.v[dst_at(plane, line, pc.half_len + o)] = TO_PLANE(lo_hi.y);
+        BUF(dst).v[dst_at(plane, line, o)] = TO_PLANE(lo_hi.x);
+        BUF(dst).v[dst_at(plane, line, pc.half_len + o)] = TO_PLANE(lo_hi.y);
     }
 }

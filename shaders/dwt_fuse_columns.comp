@@ -12,10 +12,13 @@
 // approximation (low rows of the low columns). Against a column pass then a
 // fusion pass, K planes of coefficients are neither written nor read back.
 layout(local_size_x = 16, local_size_y = 16) in;
+// src: the row pass's output, plane (s*K + k)*C + c; approx: each frame's
+// coefficient block, of which only the approximation is written; fused: the
+// fused block, plane s*C + c.
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, approx) X(2, plane_t, fused)
+#include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
-    Planes src;       // the row pass's output, plane (s*K + k)*C + c
-    Planes approx;    // each frame's coefficient block; only its approximation is written
-    Planes fused;     // fused block, plane s*C + c
+    BUFFER_FIELDS
     int n;            // samples per column (the level's input height)
     int half_len;     // coefficients per half column (periodization: high half as long)
     int columns;      // block width
@@ -45,21 +48,21 @@ void main() {
         uint column = plane * pc.src_plane_stride + uint(x);
         float win[WINDOW];
         [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)
-            win[i] = pc.src.v[column + uint(window_sample(o0, i, pc.half_len, pc.n) * pc.row_stride)];
+            win[i] = BUF(src).v[column + uint(window_sample(o0, i, pc.half_len, pc.n) * pc.row_stride)];
         [[unroll]] for (int b = 0; b < BLOCK; ++b) {
             vec2 lo_hi = analyse(win, b);
             rule_add(low[b], low_rule, k, lo_hi.x);
             rule_add(high[b], pc.detail_rule, k, lo_hi.y);
             int o = o0 + b;
             if (keep_approx && o < pc.half_len)
-                pc.approx.v[plane * pc.block_plane_stride + uint(o * pc.row_stride + x)] = TO_PLANE(lo_hi.x);
+                BUF(approx).v[plane * pc.block_plane_stride + uint(o * pc.row_stride + x)] = TO_PLANE(lo_hi.x);
         }
     }
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         int o = o0 + b;
         if (o >= pc.half_len) break;
         uint at = z * pc.block_plane_stride + uint(o * pc.row_stride + x);
-        pc.fused.v[at] = TO_PLANE(rule_result(low[b], low_rule, pc.frames));
-        pc.fused.v[at + uint(pc.half_len * pc.row_stride)] = TO_PLANE(rule_result(high[b], pc.detail_rule, pc.frames));
+        BUF(fused).v[at] = TO_PLANE(rule_result(low[b], low_rule, pc.frames));
+        BUF(fused).v[at + uint(pc.half_len * pc.row_stride)] = TO_PLANE(rule_result(high[b], pc.detail_rule, pc.frames));
     }
 }

@@ -29,8 +29,8 @@ void main() {
     float low[BLOCK + MAX_TAPS / 2 - 1], high[BLOCK + MAX_TAPS / 2 - 1];
     [[unroll]] for (int i = 0; i < BLOCK + Hf - 1; ++i) {
         int k = wrap_window(first + i, M);
-        low[i] = pc.src.v[src_at(plane, line, k)];
-        high[i] = pc.src.v[src_at(plane, line, M + k)];
+        low[i] = BUF(src).v[src_at(plane, line, k)];
+        high[i] = BUF(src).v[src_at(plane, line, M + k)];
     }
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         if (o0 + b >= M) break;
@@ -42,7 +42,7 @@ void main() {
             }
             int m = 2 * (o0 + b) + p + s;
             if (m >= 2 * M) m -= 2 * M;
-            if (m < pc.n) pc.dst.v[dst_at(plane, line, m)] = TO_PLANE(dot2_result(acc));
+            if (m < pc.n) BUF(dst).v[dst_at(plane, line, m)] = TO_PLANE(dot2_result(acc));
         }
     }
 }

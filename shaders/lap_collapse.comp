@@ -5,25 +5,29 @@
 // An invocation takes the 2 x 2 outputs that share one 3 x 3 neighbourhood of
 // R_{l+1} (pyr_up_block).
 layout(local_size_x = 16, local_size_y = 16) in;
+// coarse: R_{l+1}, cw x ch per plane; fine: C_l, width x height per plane,
+// which becomes R_l.
+#define BUFFERS(X) X(0, plane_t, coarse) X(1, plane_t, fine)
+#include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
-    Planes coarse;  // R_{l+1}, cw x ch per plane
-    Planes fine;    // C_l, width x height per plane; becomes R_l
+    BUFFER_FIELDS
     int width;
     int height;
     int cw;
     int ch;
 } pc;
+#include "pyr_up.glsl"
 
 void main() {
     int j = int(gl_GlobalInvocationID.x), i = int(gl_GlobalInvocationID.y);
     uint z = gl_WorkGroupID.z;
     if (j >= pc.cw || i >= pc.ch) return;
-    mat2 up = pyr_up_block(pc.coarse, z * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);
+    mat2 up = pyr_up_block(z * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);
     for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b) {
             int y = 2 * i + a, x = 2 * j + b;
             if (y >= pc.height || x >= pc.width) continue;
             uint at = z * uint(pc.width * pc.height) + uint(y * pc.width + x);
-            pc.fine.v[at] = TO_PLANE(up[a][b] + pc.fine.v[at]);
+            BUF(fine).v[at] = TO_PLANE(up[a][b] + BUF(fine).v[at]);
         }
 }

@@ -7,10 +7,12 @@
 // one 3 x 3 neighbourhood of G_{l+1} (pyr_up_block). Source planes are
 // (s*K + k)*C + c, the fused plane (s, c) is s*C + c.
 layout(local_size_x = 16, local_size_y = 16) in;
+// src: G_l planes, width x height; coarse: G_{l+1} planes, cw x ch; dst: the
+// fused planes, width x height.
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, coarse) X(2, plane_t, dst)
+#include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
-    Planes src;     // G_l planes, width x height
-    Planes coarse;  // G_{l+1} planes, cw x ch
-    Planes dst;     // fused planes, width x height
+    BUFFER_FIELDS
     int width;
     int height;
     int cw;
@@ -19,6 +21,7 @@ layout(push_constant, std430) uniform Push {
     uint channels;
     uint rule;
 } pc;
+#include "pyr_up.glsl"
 
 void main() {
     int j = int(gl_GlobalInvocationID.x), i = int(gl_GlobalInvocationID.y);
@@ -29,18 +32,18 @@ void main() {
     RuleState st[4];
     for (uint k = 0u; k < pc.frames; ++k) {
         uint plane = (s * pc.frames + k) * pc.channels + c;
-        mat2 up = pyr_up_block(pc.coarse, plane * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);
+        mat2 up = pyr_up_block(plane * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);
         for (int a = 0; a < 2; ++a)
             for (int b = 0; b < 2; ++b) {
                 int y = 2 * i + a, x = 2 * j + b;
                 if (y < pc.height && x < pc.width)
-                    rule_add(st[2 * a + b], pc.rule, k, pc.src.v[plane * plane_size + uint(y * pc.width + x)] - up[a][b]);
+                    rule_add(st[2 * a + b], pc.rule, k, BUF(src).v[plane * plane_size + uint(y * pc.width + x)] - up[a][b]);
             }
     }
     for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b) {
             int y = 2 * i + a, x = 2 * j + b;
             if (y < pc.height && x < pc.width)
-                pc.dst.v[z * plane_size + uint(y * pc.width + x)] = TO_PLANE(rule_result(st[2 * a + b], pc.rule, pc.frames));
+                BUF(dst).v[z * plane_size + uint(y * pc.width + x)] = TO_PLANE(rule_result(st[2 * a + b], pc.rule, pc.frames));
         }
 }

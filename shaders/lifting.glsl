@@ -20,31 +20,31 @@ uint lift_slot(LineView v, uint plane, int line, int pos) {
 }
 
 // sign = +1 applies step s, -1 undoes it.
-void lift_step(Planes coef, LineView v, uint plane, int line, int n, int s, float sign) {
+void lift_step(LineView v, uint plane, int line, int n, int s, float sign) {
     uint base = 3u + uint(s) * 6u;
-    int parity = int(pc.scheme.v[base]);
-    int taps = int(pc.scheme.v[base + 1u]);
-    float c0 = pc.scheme.v[base + 2u], c1 = pc.scheme.v[base + 3u];
-    int o0 = int(pc.scheme.v[base + 4u]), o1 = int(pc.scheme.v[base + 5u]);
+    int parity = int(BUF(scheme).v[base]);
+    int taps = int(BUF(scheme).v[base + 1u]);
+    float c0 = BUF(scheme).v[base + 2u], c1 = BUF(scheme).v[base + 3u];
+    int o0 = int(BUF(scheme).v[base + 4u]), o1 = int(BUF(scheme).v[base + 5u]);
     for (int q = parity; q < n; q += 2) {
         // x + sign * (c0 a + c1 b) as one compensated sum rounded once (Dot2,
         // common.glsl): a plain-float step rounds three times, and symmetric
         // bior4.4's eight steps per level made a fed-back image drift 1.01e-5
         // in 100 passes; compensated, 8.1e-6 (tests/stress/test_stress_feedback).
         uint at = lift_slot(v, plane, line, q);
-        Dot2 d = Dot2(float(coef.v[at]), 0.0);
-        dot2_add(d, sign * c0, coef.v[lift_slot(v, plane, line, reflect101(q + o0, n))]);
-        if (taps > 1) dot2_add(d, sign * c1, coef.v[lift_slot(v, plane, line, reflect101(q + o1, n))]);
-        coef.v[at] = TO_PLANE(dot2_result(d));
+        Dot2 d = Dot2(float(BUF(LIFT_COEF).v[at]), 0.0);
+        dot2_add(d, sign * c0, BUF(LIFT_COEF).v[lift_slot(v, plane, line, reflect101(q + o0, n))]);
+        if (taps > 1) dot2_add(d, sign * c1, BUF(LIFT_COEF).v[lift_slot(v, plane, line, reflect101(q + o1, n))]);
+        BUF(LIFT_COEF).v[at] = TO_PLANE(dot2_result(d));
     }
 }
 
 // Multiplies (forward) or divides (inverse) even positions by Ke, odd by Ko.
-void lift_scale(Planes coef, LineView v, uint plane, int line, int n, bool forward) {
-    float ke = pc.scheme.v[1], ko = pc.scheme.v[2];
+void lift_scale(LineView v, uint plane, int line, int n, bool forward) {
+    float ke = BUF(scheme).v[1], ko = BUF(scheme).v[2];
     for (int p = 0; p < n; ++p) {
         uint at = lift_slot(v, plane, line, p);
         float k = (p & 1) == 0 ? ke : ko;
-        coef.v[at] = TO_PLANE(forward ? coef.v[at] * k : coef.v[at] / k);
+        BUF(LIFT_COEF).v[at] = TO_PLANE(forward ? BUF(LIFT_COEF).v[at] * k : BUF(LIFT_COEF).v[at] / k);
     }
 }

@@ -1,10 +1,11 @@
 // 1-D transforms along rows or columns of a set of planes. A "line" is a row
 // (elements 1 apart) or a column (elements row_stride apart); the same kernel
 // serves both axes through these strides.
+// scheme: lifting kernels' lifting scheme (lifting.glsl); unused by the convolutions.
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst) X(2, float, scheme)
+#include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
-    Planes src;
-    Planes dst;
-    Floats scheme;    // lifting kernels: the lifting scheme (lifting.glsl); unused by the convolutions
+    BUFFER_FIELDS
     int n;            // samples per input line (forward) / output samples kept (inverse)
     int half_len;     // coefficients in the low half; the high half starts here
     int high_len;     // coefficients in the high half

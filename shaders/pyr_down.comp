@@ -4,9 +4,10 @@
 // cv::pyrDown on every plane: 5x5 binomial [1 4 6 4 1]/16 per axis around
 // source sample 2x (reflect-101 borders), output ((w+1)/2, (h+1)/2).
 layout(local_size_x = 16, local_size_y = 16) in;
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst)
+#include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
-    Planes src;
-    Planes dst;
+    BUFFER_FIELDS
     int sw;
     int sh;
     int dw;
@@ -22,7 +23,7 @@ const int ROWS = 8;
 float row_sum(uint sbase, int r, int cols[5]) {
     uint row = sbase + uint(reflect101(r, pc.sh) * pc.sw);
     float h = 0.0;
-    for (int j = 0; j < 5; ++j) h += K5[j] * pc.src.v[row + uint(cols[j])];
+    for (int j = 0; j < 5; ++j) h += K5[j] * BUF(src).v[row + uint(cols[j])];
     return h;
 }
 
@@ -47,6 +48,6 @@ void main() {
         }
         float acc = 0.0;
         for (int i = 0; i < 5; ++i) acc += K5[i] * h[i];
-        pc.dst.v[z * uint(pc.dw * pc.dh) + uint(y * pc.dw + x)] = TO_PLANE(acc * (1.0 / 256.0));
+        BUF(dst).v[z * uint(pc.dw * pc.dh) + uint(y * pc.dw + x)] = TO_PLANE(acc * (1.0 / 256.0));
     }
 }

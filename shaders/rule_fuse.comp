@@ -7,9 +7,10 @@
 // (a wavelet approximation, the top of a pyramid) the base rule applies, the
 // detail rule elsewhere.
 layout(local_size_x = 16, local_size_y = 16) in;
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst)
+#include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
-    Planes src;
-    Planes dst;
+    BUFFER_FIELDS
     int width;       // region fused per plane
     int height;
     int row_stride;  // of src and dst planes
@@ -32,7 +33,7 @@ void main() {
     RuleState st = RuleState(0.0, 0.0);
     for (uint k = 0u; k < pc.frames; ++k) {
         uint plane = (s * pc.frames + k) * pc.channels + c;
-        rule_add(st, rule, k, pc.src.v[plane * pc.plane_stride + offset]);
+        rule_add(st, rule, k, BUF(src).v[plane * pc.plane_stride + offset]);
     }
-    pc.dst.v[z * pc.plane_stride + offset] = TO_PLANE(rule_result(st, rule, pc.frames));
+    BUF(dst).v[z * pc.plane_stride + offset] = TO_PLANE(rule_result(st, rule, pc.frames));
 }

@@ -31,11 +31,16 @@ TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
     EXPECT_EQ(metrics.push_bytes, 7u * 8u + 32u);
 }
 
-TEST(KernelInterface, KernelsThatStillTakeAddressesDeclareThem) {
-    // rule_fuse.comp: two buffer references, then ten 4-byte scalars.
-    const vk::KernelInterface rule = vk::reflect_kernel(vk::shader_spirv("rule_fuse"));
-    EXPECT_EQ(rule.bindings, 0u);
-    EXPECT_EQ(rule.push_bytes, 2u * 8u + 10u * 4u);
+TEST(KernelInterface, SharedPushBlocksDeclareTheirBuffersToo) {
+    // rule_fuse.comp: 2 buffers, ten 4-byte scalars.
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).bindings, 2u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).push_bytes, 10u * 4u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse_addr")).push_bytes, 2u * 8u + 10u * 4u);
+    // dwt_forward.comp's block comes from line.glsl: src, dst, scheme; eleven scalars.
+    const vk::KernelInterface line = vk::reflect_kernel(vk::shader_spirv("dwt_forward"));
+    EXPECT_EQ(line.bindings, 3u);
+    EXPECT_EQ(line.push_bytes, 11u * 4u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("dwt_forward_fp16_addr")).push_bytes, 3u * 8u + 11u * 4u);
 }
 
 TEST(KernelInterface, RejectsWordsThatAreNotSpirv) {

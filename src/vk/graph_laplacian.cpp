@@ -41,7 +41,8 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
                            groups(c.w / 4, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
             continue;
         }
-        g.rec.dispatch("pyr_down", PushConstants().ptr(p.gauss).ptr(c.gauss).i32(int(p.w)).i32(int(p.h)).i32(int(c.w)).i32(int(c.h)),
+        g.rec.dispatch("pyr_down", {g.span(p.gauss), g.span(c.gauss)},
+                       PushConstants().i32(int(p.w)).i32(int(p.h)).i32(int(c.w)).i32(int(c.h)),
                        groups(c.w, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
     }
     g.rec.mark("pyr_down");
@@ -65,11 +66,8 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
                                .u32(rule_id(g.cfg.fusion.detail_rule)),
                            groups(coarse.w / 4, 16), groups(coarse.h, 16), g.planes_out());
         } else {  // the detail rule on G_l - pyrUp(G_{l+1}), 2 x 2 outputs per invocation
-            g.rec.dispatch("lap_fuse",
+            g.rec.dispatch("lap_fuse", {g.span(c.gauss), g.span(coarse.gauss), g.span(c.fused)},
                            PushConstants()
-                               .ptr(c.gauss)
-                               .ptr(coarse.gauss)
-                               .ptr(c.fused)
                                .i32(int(c.w))
                                .i32(int(c.h))
                                .i32(int(coarse.w))
@@ -91,7 +89,8 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
                            groups(up.w / 4, 16), groups(up.h, 16), g.planes_out());
             continue;
         }
-        g.rec.dispatch("lap_collapse", PushConstants().ptr(up.fused).ptr(c.fused).i32(int(c.w)).i32(int(c.h)).i32(int(up.w)).i32(int(up.h)),
+        g.rec.dispatch("lap_collapse", {g.span(up.fused), g.span(c.fused)},
+                       PushConstants().i32(int(c.w)).i32(int(c.h)).i32(int(up.w)).i32(int(up.h)),
                        groups(up.w, 16), groups(up.h, 16), g.planes_out());
     }
     g.rec.mark("lap_collapse");

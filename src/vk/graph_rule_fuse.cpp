@@ -7,10 +7,8 @@ namespace vkfuse::vk {
 
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
     const FusionSpec& spec = g.cfg.fusion;
-    g.rec.dispatch("rule_fuse",
+    g.rec.dispatch("rule_fuse", {g.span(r.src), g.span(r.dst)},
                    PushConstants()
-                       .ptr(r.src)
-                       .ptr(r.dst)
                        .i32(r.width)
                        .i32(r.height)
                        .i32(r.row_stride)

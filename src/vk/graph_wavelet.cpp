@@ -195,9 +195,6 @@ private:
         const int s_line = ls.along_rows ? src.row_stride : 1, s_elem = ls.along_rows ? 1 : src.row_stride;
         const int d_line = ls.along_rows ? dst.row_stride : 1, d_elem = ls.along_rows ? 1 : dst.row_stride;
         return PushConstants()
-            .ptr(src.addr)
-            .ptr(dst.addr)
-            .ptr(scheme_)
             .i32(ls.n)
             .i32(ls.half_len)
             .i32(ls.high_len)
@@ -216,13 +213,16 @@ private:
     void dispatch_line(const char* conv, const char* lift, const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls,
                        std::uint32_t planes) {
         const auto push = line_push(src, dst, ls);
+        const DeviceSpan in = g_.span(src.addr), out = g_.span(dst.addr), scheme = scheme_ ? g_.span(scheme_) : in;
         const std::uint32_t blocks = groups(std::uint32_t(ls.half_len), kConvBlock);
         if (!periodization_) {
-            g_.rec.dispatch(lift, push, groups(std::uint32_t(ls.lines), 64), 1, planes);
+            g_.rec.dispatch(lift, {in, out, scheme}, push, groups(std::uint32_t(ls.lines), 64), 1, planes);
         } else if (ls.along_rows) {
-            g_.rec.dispatch(conv, push, groups(blocks, 16), groups(std::uint32_t(ls.lines), 16), planes, taps_);
+            g_.rec.dispatch(conv, {in, out, scheme}, push, groups(blocks, 16), groups(std::uint32_t(ls.lines), 16),
+                            planes, taps_);
         } else {
-            g_.rec.dispatch(conv, push, groups(std::uint32_t(ls.lines), 16), groups(blocks, 16), planes, taps_);
+            g_.rec.dispatch(conv, {in, out, scheme}, push, groups(std::uint32_t(ls.lines), 16), groups(blocks, 16),
+                            planes, taps_);
         }
     }
 
@@ -254,11 +254,8 @@ private:
     // frame's block only the approximation the next level needs is written.
     void fuse_columns(const PlaneSet& rows, const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s,
                       bool deepest) {
-        g_.rec.dispatch("dwt_fuse_columns",
+        g_.rec.dispatch("dwt_fuse_columns", {g_.span(rows.addr), g_.span(coeffs.addr), g_.span(out.addr)},
                         PushConstants()
-                            .ptr(rows.addr)
-                            .ptr(coeffs.addr)
-                            .ptr(out.addr)
                             .i32(s.h)
                             .i32(s.ch)
                             .i32(s.bw)

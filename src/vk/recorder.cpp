@@ -63,16 +63,6 @@ void Recorder::begin_dispatch(const std::string& shader, std::span<const std::ui
     ctx_.api->vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader + variant_, specialization));
 }
 
-void Recorder::dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,
-                        std::uint32_t gz, std::span<const std::uint32_t> specialization) {
-    if (gx == 0 || gy == 0 || gz == 0) return;
-    check_interface(ctx_, shader + variant_, 0, push.size());
-    begin_dispatch(shader, specialization);
-    auto& api = *ctx_.api;
-    api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
-    api.vkCmdDispatch(cmd_, gx, gy, gz);
-}
-
 void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
                         const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
                         std::span<const std::uint32_t> specialization) {

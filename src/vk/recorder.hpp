@@ -30,11 +30,6 @@ public:
                   std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
                   std::span<const std::uint32_t> specialization = {});
 
-    // Records shader with push constants over groups (x, y, z). Everything the
-    // previous dispatches wrote is visible to it. specialization: the values of
-    // the shader's constant_id 0, 1, ... (Context::Impl::pipeline).
-    void dispatch(const std::string& shader, const PushConstants& push, std::uint32_t gx, std::uint32_t gy,
-                  std::uint32_t gz, std::span<const std::uint32_t> specialization = {});
     // Closes the stage begun after the previous mark: its GPU time is reported under name.
     void mark(const std::string& name);
     void finish();  // makes shader writes visible to the host and ends the buffer
