@@ -52,7 +52,8 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
         const Level& coarse = top ? c : lv[std::size_t(l) + 1];
         c.fused = g.planes(std::uint64_t(g.planes_out()) * c.w * c.h);
         if (top) {  // the base rule on G_L itself
-            record_rule_fuse(g, {c.gauss, c.fused, int(c.w), int(c.h), int(c.w), c.w * c.h, int(c.w), int(c.h)});
+            const PlaneView top_in{c.gauss, int(c.w), c.w * c.h}, top_out{c.fused, int(c.w), c.w * c.h};
+            record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h)});
         } else if (c.w % 8 == 0) {  // 2 x 8 outputs per invocation, plane4 loads and stores
             const DeviceSpan coarse_span = g.span(coarse.gauss);
             g.rec.dispatch("lap_fuse4", {g.span(c.gauss), coarse_span, coarse_span, g.span(c.fused)},

@@ -2,17 +2,20 @@
 // coefficient by coefficient across the K frames, shared by the Laplacian
 // top level and the symmetric wavelet levels.
 #include "vk/plan_impl.hpp"
+#include "vkfuse/error.hpp"
 
 namespace vkfuse::vk {
 
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
+    if (r.src.row_stride != r.dst.row_stride || r.src.plane_stride != r.dst.plane_stride)
+        throw Error(ErrorKind::Device, "internal: rule_fuse takes one set of strides for its source and result");
     const FusionSpec& spec = g.cfg.fusion;
-    g.rec.dispatch("rule_fuse", {g.span(r.src), g.span(r.dst)},
+    g.rec.dispatch("rule_fuse", {g.span(r.src.addr), g.span(r.dst.addr)},
                    PushConstants()
                        .i32(r.width)
                        .i32(r.height)
-                       .i32(r.row_stride)
-                       .u32(r.plane_stride)
+                       .i32(r.src.row_stride)
+                       .u32(r.src.plane_stride)
                        .u32(std::uint32_t(g.cfg.frames))
                        .u32(std::uint32_t(g.cfg.channels))
                        .u32(std::uint32_t(spec.base_rule))

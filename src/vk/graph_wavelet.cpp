@@ -19,13 +19,6 @@
 namespace vkfuse::vk {
 namespace {
 
-// A set of planes as a strided 2-D view.
-struct PlaneSet {
-    VkDeviceAddress addr = 0;
-    int row_stride = 0;
-    std::uint32_t plane_stride = 0;
-};
-
 struct LevelShape {
     int h, w;    // the approximation this level splits
     int ch, cw;  // its approximation (next level's input)
@@ -146,15 +139,15 @@ public:
     VkDeviceAddress record(VkDeviceAddress input) {
         const auto& top = shapes_.front();
         const VkDeviceAddress scratch = g_.planes(std::uint64_t(g_.planes_in()) * top.h * top.bw);
-        std::vector<PlaneSet> fused;
-        PlaneSet a{input, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
+        std::vector<PlaneView> fused;
+        PlaneView a{input, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
         const int L = int(shapes_.size());
         for (int l = 0; l < L; ++l) {
             const auto& s = shapes_[std::size_t(l)];
-            PlaneSet t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
-            PlaneSet d{g_.planes(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
+            PlaneView t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
+            PlaneView d{g_.planes(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             forward(a, t, {s.w, s.cw, high(s.w, s.cw), s.h, true}, g_.planes_in());
-            PlaneSet f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
+            PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             if (periodization_) {
                 fuse_columns(t, d, f, s, l == L - 1);
             } else {
@@ -169,9 +162,9 @@ public:
         const VkDeviceAddress inv_scratch = g_.planes(std::uint64_t(g_.planes_out()) * top.h * top.bw);
         for (int l = L - 1; l >= 0; --l) {
             const auto& s = shapes_[std::size_t(l)];
-            PlaneSet u{inv_scratch, s.bw, std::uint32_t(s.h * s.bw)};
-            PlaneSet dst = l > 0 ? fused[std::size_t(l) - 1]
-                                 : PlaneSet{out_addr, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
+            PlaneView u{inv_scratch, s.bw, std::uint32_t(s.h * s.bw)};
+            PlaneView dst = l > 0 ? fused[std::size_t(l) - 1]
+                                 : PlaneView{out_addr, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
             inverse(fused[std::size_t(l)], u, {s.h, s.ch, high(s.h, s.ch), s.bw, false});
             inverse(u, dst, {s.w, s.cw, high(s.w, s.cw), s.h, true});
         }
@@ -189,7 +182,7 @@ private:
 
     int high(int n, int half) const { return periodization_ ? half : n - half; }
 
-    PushConstants line_push(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls) const {
+    PushConstants line_push(const PlaneView& src, const PlaneView& dst, const LineSpec& ls) const {
         // Along rows: next line is a row below, next sample is adjacent.
         // Along columns: next line is adjacent, next sample is a row below.
         const int s_line = ls.along_rows ? src.row_stride : 1, s_elem = ls.along_rows ? 1 : src.row_stride;
@@ -210,7 +203,7 @@ private:
 
     // Lifting: an invocation per line. Convolution: per line, an invocation
     // per kConvBlock of the half_len coefficient positions.
-    void dispatch_line(const char* conv, const char* lift, const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls,
+    void dispatch_line(const char* conv, const char* lift, const PlaneView& src, const PlaneView& dst, const LineSpec& ls,
                        std::uint32_t planes) {
         const auto push = line_push(src, dst, ls);
         const DeviceSpan in = g_.span(src.addr), out = g_.span(dst.addr), scheme = scheme_ ? g_.span(scheme_) : in;
@@ -226,7 +219,7 @@ private:
         }
     }
 
-    void forward(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls, std::uint32_t planes) {
+    void forward(const PlaneView& src, const PlaneView& dst, const LineSpec& ls, std::uint32_t planes) {
         // Rows of whole quads: eight pairs per invocation, plane4 loads and stores.
         if (periodization_ && ls.along_rows && ls.half_len % 8 == 0 && src.row_stride % 4 == 0 &&
             src.plane_stride % 4 == 0 && dst.row_stride % 4 == 0 && dst.plane_stride % 4 == 0) {
@@ -246,13 +239,13 @@ private:
         }
         dispatch_line("dwt_forward", "lift_forward", src, dst, ls, planes);
     }
-    void inverse(const PlaneSet& src, const PlaneSet& dst, const LineSpec& ls) {
+    void inverse(const PlaneView& src, const PlaneView& dst, const LineSpec& ls) {
         dispatch_line("dwt_inverse", "lift_inverse", src, dst, ls, g_.planes_out());
     }
 
     // Periodization: the column pass and the fusion in one kernel; of each
     // frame's block only the approximation the next level needs is written.
-    void fuse_columns(const PlaneSet& rows, const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s,
+    void fuse_columns(const PlaneView& rows, const PlaneView& coeffs, const PlaneView& out, const LevelShape& s,
                       bool deepest) {
         g_.rec.dispatch("dwt_fuse_columns", {g_.span(rows.addr), g_.span(coeffs.addr), g_.span(out.addr)},
                         PushConstants()
@@ -272,8 +265,8 @@ private:
                         g_.planes_out(), taps_);
     }
 
-    void fuse(const PlaneSet& coeffs, const PlaneSet& out, const LevelShape& s, bool deepest) {
-        record_rule_fuse(g_, {coeffs.addr, out.addr, s.bw, s.bh, s.bw, coeffs.plane_stride, deepest ? s.cw : 0,
+    void fuse(const PlaneView& coeffs, const PlaneView& out, const LevelShape& s, bool deepest) {
+        record_rule_fuse(g_, {coeffs, out, s.bw, s.bh, deepest ? s.cw : 0,
                               deepest ? s.ch : 0});
     }
 };

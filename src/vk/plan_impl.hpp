@@ -52,14 +52,22 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
 VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input);
 VkDeviceAddress record_wavelet(GraphBuilder& g, VkDeviceAddress input);
 
+// A set of planes as a strided 2-D view: plane p's sample (y, x) is
+// addr[p * plane_stride + y * row_stride + x], in plane samples. What the
+// graph builders hand each other and their kernels.
+struct PlaneView {
+    VkDeviceAddress addr = 0;
+    int row_stride = 0;
+    std::uint32_t plane_stride = 0;
+};
+
 // A width x height region of S*K*C source planes (plane (s*K + k)*C + c) and
-// of the S*C fused planes (s*C + c), both with these strides. Inside its
+// of the S*C fused planes (s*C + c), both with the same strides. Inside its
 // top-left split_w x split_h corner the base rule applies, the detail rule
 // elsewhere.
 struct RuleFuseRegion {
-    VkDeviceAddress src = 0, dst = 0;
-    int width = 0, height = 0, row_stride = 0;
-    std::uint32_t plane_stride = 0;
+    PlaneView src, dst;
+    int width = 0, height = 0;
     int split_w = 0, split_h = 0;
 };
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& region);

@@ -8,8 +8,11 @@
 // Two sensors' worth of frames alternate (A, B, A, ...): every check-every
 // cycles the fused image and metrics must equal, bit for bit, those of the
 // first cycle that saw the same input. Resident memory (/proc/self/statm) is
-// recorded after the warm-up and ten times more; from the warm-up to the end
-// it may grow by less than 1 MiB. The validation layer is on throughout: its
+// recorded after the warm-up and ten times more. A leak grows with every
+// cycle; a driver's pools fill to a steady size and stop (lavapipe, Mesa 25,
+// with descriptor-bound kernels: about 6 MiB over the first 6000 cycles, then
+// flat). So over the last 40 % of the run memory may grow by less than 1 MiB,
+// and from the warm-up to the end by less than 16 MiB. The validation layer is on throughout: its
 // object tracker reports every object still alive at vkDestroyDevice /
 // vkDestroyInstance, and any validation message fails the run. Prints the RSS
 // curve and one JSON line; exit status 0 when everything held, 1 otherwise.
@@ -160,13 +163,24 @@ int soak(const Options& o) {
     }  // plan, then context: the validation layer reports leaked objects here
     const long rss_warm = curve[1].second, rss_end = curve.back().second;
     const long growth = rss_end - rss_warm;
+    // The first sample at or after 60 % of the cycles.
+    long rss_late = rss_end;
+    for (const auto& [cycle, bytes] : curve)
+        if (cycle * 10 >= o.cycles * 6) {
+            rss_late = bytes;
+            break;
+        }
+    const long late_growth = rss_end - rss_late;
     std::printf("resident memory (MiB): start %.2f", mib(rss_start));
     for (const auto& [cycle, bytes] : curve) std::printf(", %ld: %.2f", cycle, mib(bytes));
     std::printf("\n");
-    std::printf("%.1f s, %.3f ms per cycle; growth after warm-up %+.3f MiB; %ld mismatches; %zu validation messages\n",
-                seconds, 1000 * seconds / double(o.cycles), mib(growth), mismatches, validation.messages.size());
+    std::printf("%.1f s, %.3f ms per cycle; growth after warm-up %+.3f MiB, over the last 40 %% %+.3f MiB; %ld "
+                "mismatches; %zu validation messages\n",
+                seconds, 1000 * seconds / double(o.cycles), mib(growth), mib(late_growth), mismatches,
+                validation.messages.size());
     for (const std::string& m : validation.messages) std::printf("validation: %s\n", m.c_str());
-    const bool ok = growth < 1024 * 1024 && mismatches == 0 && validation.messages.empty();
+    const bool ok = late_growth < 1024 * 1024 && growth < 16 * 1024 * 1024 && mismatches == 0 &&
+                    validation.messages.empty();
     std::printf(
         "{\"cycles\": %ld, \"width\": %d, \"height\": %d, \"seconds\": %.1f, \"rss_start_mib\": %.2f, "
         "\"rss_after_warmup_mib\": %.2f, \"rss_end_mib\": %.2f, \"mismatches\": %ld, \"validation_messages\": %zu, "
