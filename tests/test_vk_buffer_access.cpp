@@ -34,6 +34,7 @@ Context& addressed_context() {
 struct Shape {
     int height, width, channels, frames, sensors;
     PixelType input;
+    Precision precision = Precision::Fp32;
 };
 
 struct Results {
@@ -51,6 +52,7 @@ Results run(Context& ctx, const FusionSpec& spec, const Shape& s) {
     cfg.sensors = s.sensors;
     cfg.input = s.input;
     cfg.background_diff = true;
+    cfg.precision = s.precision;
     Plan plan(ctx, cfg);
     std::vector<Image> floats;
     std::vector<std::vector<std::uint8_t>> bytes;
@@ -95,17 +97,21 @@ TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
     const Shape shapes[] = {{96, 256, 3, 3, 2, PixelType::U8},  // planes of whole quads
                             {96, 128, 3, 3, 1, PixelType::F32},
                             {75, 77, 3, 3, 2, PixelType::U8},  // 5775 pixels: the scalar paths
-                            {75, 77, 1, 2, 1, PixelType::F32}};
+                            {75, 77, 1, 2, 1, PixelType::F32},
+                            {96, 256, 3, 3, 1, PixelType::U8, Precision::Fp16Storage},  // float16 planes
+                            {75, 77, 3, 2, 1, PixelType::F32, Precision::Fp16Storage}};
     for (const FusionSpec& spec : specs)
         for (const Shape& s : shapes) {
             if (s.channels != 3 && spec.method != Method::Mean && spec.method != Method::Laplacian &&
                 spec.method != Method::Wavelet)
                 continue;
             if (spec.method == Method::ChannelSum && s.frames != 3) continue;
+            if (s.precision == Precision::Fp16Storage && !ctx().device().fp16_storage) continue;
             const std::string what = std::string(to_string(spec.method)) + " " + std::to_string(s.height) + "x" +
                                      std::to_string(s.width) + "x" + std::to_string(s.channels) + " K" +
                                      std::to_string(s.frames) + " S" + std::to_string(s.sensors) +
-                                     (s.input == PixelType::U8 ? " u8" : " f32");
+                                     (s.input == PixelType::U8 ? " u8" : " f32") +
+                                     (s.precision == Precision::Fp16Storage ? " fp16" : "");
             const Results bound = run(ctx(), spec, s);
             const Results addressed = run(addressed_context(), spec, s);
             for (int sensor = 0; sensor < s.sensors; ++sensor) {
