@@ -44,6 +44,7 @@ CellResult measure_vulkan(Context& context, const Cell& cell, const Inputs& in, 
     CellResult r;
     r.cell = cell;
     r.device = context.device().name;
+    r.driver = context.device().driver;
     const auto start = std::chrono::steady_clock::now();
     Plan plan(context, plan_config(cell, profile));
     for (int s = 0; s < cell.sensors; ++s) plan.set_background(s, FrameView::of(in.background(s)));

@@ -142,6 +142,7 @@ CellResult unmeasured(const Cell& c, const Environment& env) {
     CellResult r;
     r.cell = c;
     r.device = c.backend == Backend::Cpu ? kCpuDevice : env.vulkan ? env.vulkan->device().name : "";
+    if (c.backend == Backend::Vulkan && env.vulkan) r.driver = env.vulkan->device().driver;
     return r;
 }
 

@@ -39,7 +39,7 @@ Filters (comma lists; each replaces that axis of the scope):
 
 Output:
   --json FILE.json  an array with one object per cell: method, wavelet, levels,
-                    backend, device, precision, width, height, frames, sensors,
+                    backend, device, driver, precision, width, height, frames, sensors,
                     skipped, median_ms, min_ms, max_ms, runs, runs_capped, plan_ms,
                     throughput_cycles_s (sensor-cycles/s), mpixels_s, max_abs_err,
                     mean_abs_err, samples_over_1e-5, checked_sensors,

@@ -52,6 +52,7 @@ void add_identity(Members& o, const CellResult& r) {
     o.add("wavelet", text_if(wavelet, to_string(c.method.wavelet)));
     o.add("levels", c.levels > 0 ? std::optional<double>(c.levels) : std::nullopt);
     o.add("backend", Value(std::string(to_string(c.backend)))).add("device", Value(r.device));
+    o.add("driver", r.driver.empty() ? Value(nullptr) : Value(r.driver));
     o.add("precision", Value(c.precision_name()));
     o.add("width", Value(c.size.width)).add("height", Value(c.size.height));
     o.add("frames", Value(c.frames)).add("sensors", Value(c.sensors));
@@ -105,7 +106,7 @@ void add_peer(Members& o, const CellResult& r) {
 
 const std::vector<std::string>& json_required_fields() {
     static const std::vector<std::string> fields{
-        "method", "wavelet", "levels", "backend", "device", "precision", "width", "height", "frames", "sensors",
+        "method", "wavelet", "levels", "backend", "device", "driver", "precision", "width", "height", "frames", "sensors",
         "skipped", "median_ms", "min_ms", "max_ms", "runs", "throughput_cycles_s", "mpixels_s", "max_abs_err",
         "mean_abs_err", "samples_over_1e-5", "metric_rel_err", "kernel_ms", "bytes_per_cycle", "copy_bandwidth_gbs",
         "bandwidth_fraction", "kernel_copy_ns_per_float", "floor_ms", "floor_fraction", "peer", "peer_median_ms", "peer_max_abs_err", "peer_speedup"};

@@ -27,6 +27,7 @@ struct PeerResult {
 struct CellResult {
     Cell cell;
     std::string device;   // "llvmpipe (...)", or the CPU reference's description
+    std::string driver;   // Vulkan cells: "llvmpipe Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)"
     std::string failure;  // the cell was meant to run but could not (device error)
     Timing timing;
     double plan_ms = 0;   // Plan construction (pipelines, buffers, recording)
