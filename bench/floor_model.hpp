@@ -2,7 +2,7 @@
 // method and shape must do (memory accesses, floating-point work, dispatches),
 // priced at the costs the probe kernels measured this run
 // (vk/kernel_access.hpp). floor_ms / median_ms says how close a cell runs to
-// what the device allows any implementation.
+// what the device allows a pipeline of that method.
 #pragma once
 #include "cell.hpp"
 #include "vk/kernel_access.hpp"
@@ -10,13 +10,15 @@
 namespace vkfuse::bench {
 
 struct PipelineCost {
-    double accesses = 0;  // floats read or written (8-bit input: 4 samples per word)
+    double accesses = 0;  // floats read or written (8-bit input: a word of 4 samples is one)
     double flops = 0;     // a multiply-add is 2
     int dispatches = 0;
 };
 
-// The ideal pipeline of one cycle of `c` (all S sensors), float32 or 8-bit
-// frames, scored against a background (as the bench's cells are).
+// The ideal pipeline of one cycle of `c` (all S sensors; RGB frames, as the
+// bench's are), from float32 frames (what the bench uploads) or 8-bit ones,
+// scored against a background (as the bench's cells are). Wavelet cells are
+// periodization, the bench's mode.
 PipelineCost ideal_pipeline(const Cell& c, bool eight_bit_input);
 
 // Its time on the probed device: accesses at half a bound vec4 copy's cost per
