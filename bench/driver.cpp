@@ -78,7 +78,7 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
     }
     if (o.peers && !o.probe) {
         env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
-        env.cpp_peer = PeerRunner::program(kCppPeer, Method::Laplacian);
+        env.cpp_peer = PeerRunner::program(kCppPeer, {Method::ChannelSum, Method::Brovey, Method::Laplacian});
     }
     return env;
 }
@@ -122,7 +122,7 @@ void print_environment(const Environment& env, const Options& o, double budget) 
     else
         std::printf("peers: not available (%s); peer columns stay empty\n", env.peers->why_not().c_str());
     if (o.peers && env.cpp_peer->available())
-        std::printf("C++ peer: %s (laplacian)\n", kCppPeer);
+        std::printf("C++ peer: %s (%s)\n", kCppPeer, env.cpp_peer->methods().c_str());
     else if (o.peers)
         std::printf("C++ peer: %s\n", env.cpp_peer->why_not().c_str());
     const bool fp16 = env.vulkan && env.vulkan->device().fp16_storage;

@@ -70,9 +70,9 @@ PeerRunner::PeerRunner(std::string script, const std::string& python) : script_(
     }
 }
 
-PeerRunner PeerRunner::program(const std::string& program, Method method) {
+PeerRunner PeerRunner::program(const std::string& program, std::vector<Method> methods) {
     PeerRunner r;
-    r.only_ = method;
+    r.only_ = std::move(methods);
     if (program.empty())
         r.why_not_ = "not built (OpenCV not found when configured; libopencv-dev provides it)";
     else if (!std::filesystem::exists(program))
@@ -80,6 +80,12 @@ PeerRunner PeerRunner::program(const std::string& program, Method method) {
     else
         r.prefix_ = {program};
     return r;
+}
+
+std::string PeerRunner::methods() const {
+    std::string out;
+    for (Method m : only_) out += (out.empty() ? "" : ", ") + std::string(to_string(m));
+    return out;
 }
 
 PeerResult PeerRunner::run(const Cell& cell, const Inputs& in, const Expected& sensor0, double max_seconds,

@@ -1,8 +1,9 @@
 // The peers run on the same frames as vkfuse, so speed and error are compared
 // within one run: the Python pipelines (bench/peers/pipelines.py) and the C++
-// one written with OpenCV's API (bench/peers/opencv_peer.cpp, Laplacian).
+// ones written with OpenCV's API (bench/peers/opencv_peer.cpp: Laplacian,
+// Brovey, channel-sum).
 #pragma once
-#include <optional>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,16 @@ public:
     // python3-opencv), then python3 on PATH. Without one (or without the
     // script) available() is false.
     PeerRunner(std::string script, const std::string& python);
-    // The C++ peer at `program` (empty: not built), which runs `method` only.
-    static PeerRunner program(const std::string& program, Method method);
+    // The C++ peer at `program` (empty: not built), which runs `methods` only.
+    static PeerRunner program(const std::string& program, std::vector<Method> methods);
 
     bool available() const { return !prefix_.empty(); }
     // Whether it runs the cell's method.
-    bool runs(const Cell& cell) const { return !only_ || cell.method.method == *only_; }
+    bool runs(const Cell& cell) const {
+        return only_.empty() || std::find(only_.begin(), only_.end(), cell.method.method) != only_.end();
+    }
+    // "laplacian, brovey" (empty: every method).
+    std::string methods() const;
     const std::string& python() const { return python_; }
     const std::string& why_not() const { return why_not_; }
 
@@ -38,7 +43,7 @@ private:
     std::string script_;
     std::string python_;
     std::vector<std::string> prefix_;  // the command before the arguments: interpreter and script, or the program
-    std::optional<Method> only_;
+    std::vector<Method> only_;  // empty: every method
     std::string why_not_;
 };
 

@@ -15,9 +15,9 @@ struct StageTime {
     double median_ms = 0;  // over the timed runs
 };
 
-// A Python peer pipeline run on sensor 0's frames of a workload.
+// A peer pipeline (Python or OpenCV C++) run on sensor 0's frames of a workload.
 struct PeerResult {
-    std::string name;      // "pywt 1.1.1 wavedec2/waverec2 + numpy 1.24.2"
+    std::string name;      // "pywt 1.1.1 wavedec2/waverec2 + numpy 1.24.2", "opencv-c++ 4.6.0 pyrDown/pyrUp"
     std::string failure;   // non-empty: the peer did not produce a result
     Timing per_sensor;     // the script's own loop, one sensor's cycle
     FusedError error;      // its fused image against the reference
@@ -45,7 +45,7 @@ struct CellResult {
     std::optional<double> kernel_copy_ns;   // ns per float a kernel copies via device addresses, this run
     std::optional<double> floor_ms;         // the ideal pipeline on this device (floor_model.hpp), Vulkan only
     std::optional<PeerResult> peer;      // the Python pipeline of the method
-    std::optional<PeerResult> cpp_peer;  // the OpenCV C++ pipeline (Laplacian cells)
+    std::optional<PeerResult> cpp_peer;  // the OpenCV C++ pipeline (Laplacian, Brovey, channel-sum cells)
 
     bool measured() const { return cell.skip.empty() && failure.empty(); }
     double cycles_per_second() const { return timing.median_ms > 0 ? 1000.0 / timing.median_ms : 0; }

@@ -1,14 +1,15 @@
-// The pipeline a C++ user would write with OpenCV's own API: Laplacian pyramid
+// The pipelines a C++ user would write with OpenCV's own API, as the Python
+// peer (bench/peers/pipelines.py) writes them with numpy: Laplacian pyramid
 // fusion with pyrDown/pyrUp (SPEC.md's rules: detail max-abs, ties to the
-// lowest frame; base mean), then the three metrics. vkfuse-bench runs it like
-// bench/peers/pipelines.py, with the same command line and the same one-line
-// JSON answer:
+// lowest frame; base mean), Brovey and channel-sum with OpenCV's per-element
+// operations, then the three metrics. vkfuse-bench runs it with the Python
+// peer's command line and reads the same one-line JSON answer:
 //
 //   vkfuse-bench-peer-opencv --method laplacian --levels 4 --runs 20
 //       --max-seconds 60 --background bg.npy --out fused.npy f0.npy f1.npy f2.npy
 //
-// Every Mat is allocated once, before the timed loop, and reused; OpenCV uses
-// 2 threads (the bench's hosts have 2 cores). Exit status 2 with one line on
+// Every Mat is allocated by the warm-up cycle and reused; OpenCV uses 2
+// threads (the bench's hosts have 2 cores). Exit status 2 with one line on
 // bad arguments or unreadable files.
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -17,7 +18,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,11 +28,31 @@
 namespace {
 
 struct Args {
+    std::string method;
     int levels = 4, runs = 20;
     double max_seconds = 60;
     std::string background, out;
     std::vector<std::string> frames;
 };
+
+double number(const std::string& option, const std::string& text) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size() || !std::isfinite(v))
+        throw std::invalid_argument(option + ": not a number: '" + text + "'");
+    return v;
+}
+
+int whole_number(const std::string& option, const std::string& text) {
+    const double v = number(option, text);
+    if (v != std::floor(v) || v < 1 || v > 1e6) throw std::invalid_argument(option + ": not a count >= 1: '" + text + "'");
+    return int(v);
+}
 
 Args parse(int argc, char** argv) {
     Args a;
@@ -43,14 +63,15 @@ Args parse(int argc, char** argv) {
             return argv[++i];
         };
         if (k == "--method") {
-            if (const std::string m = value(); m != "laplacian")
-                throw std::invalid_argument("--method " + m + ": the C++ peer runs laplacian only");
+            a.method = value();
+            if (a.method != "laplacian" && a.method != "brovey" && a.method != "channel-sum")
+                throw std::invalid_argument("--method " + a.method + ": the C++ peer runs laplacian, brovey, channel-sum");
         } else if (k == "--levels") {
-            a.levels = std::stoi(value());
+            a.levels = whole_number(k, value());
         } else if (k == "--runs") {
-            a.runs = std::stoi(value());
+            a.runs = whole_number(k, value());
         } else if (k == "--max-seconds") {
-            a.max_seconds = std::stod(value());
+            a.max_seconds = number(k, value());
         } else if (k == "--background") {
             a.background = value();
         } else if (k == "--out") {
@@ -61,8 +82,10 @@ Args parse(int argc, char** argv) {
             a.frames.push_back(k);
         }
     }
-    if (a.frames.size() < 2 || a.background.empty() || a.out.empty() || a.levels < 1 || a.runs < 1)
-        throw std::invalid_argument("needs --background, --out, --levels >= 1, --runs >= 1 and two or more frames");
+    if (a.method.empty() || a.frames.size() < 2 || a.background.empty() || a.out.empty())
+        throw std::invalid_argument("needs --method, --background, --out and two or more frames");
+    if (a.method == "channel-sum" && a.frames.size() != 3)
+        throw std::invalid_argument("channel-sum needs three frames");
     return a;
 }
 
@@ -71,14 +94,22 @@ cv::Mat as_mat(vkfuse::Image& img) {
     return cv::Mat(img.height, img.width, CV_32FC3, img.data.data());
 }
 
-// One cycle's buffers, allocated once.
+// SPEC's Brovey threshold, s >= 1e-6 in exact arithmetic: the smallest float
+// that is >= 1e-6 (float(1e-6) rounds below it).
+float brovey_threshold() {
+    const float t = 1e-6f;
+    return double(t) >= 1e-6 ? t : std::nextafter(t, 1.0f);
+}
+
+// One cycle's buffers, reused from cycle to cycle.
 struct Pipeline {
+    std::string method;
     int K, L;
     std::vector<std::vector<cv::Mat>> gauss, lap;  // [frame][level]
-    std::vector<cv::Mat> fused, up, abs_best, abs_k, mask;
-    cv::Mat top_sum, result, luma, gx, gy, magnitude, diff;
+    std::vector<cv::Mat> fused, up, abs_best, abs_k, mask, positive;
+    cv::Mat sum, weighted, product, dark, result, luma, gx, gy, magnitude, diff;
 
-    Pipeline(const std::vector<cv::Mat>& frames, int levels) : K(int(frames.size())), L(levels) {
+    Pipeline(std::string m, int frames, int levels) : method(std::move(m)), K(frames), L(levels) {
         gauss.assign(std::size_t(K), std::vector<cv::Mat>(std::size_t(L) + 1));
         lap.assign(std::size_t(K), std::vector<cv::Mat>(std::size_t(L)));
         fused.resize(std::size_t(L) + 1);
@@ -86,9 +117,19 @@ struct Pipeline {
         abs_best.resize(std::size_t(L));
         abs_k.resize(std::size_t(L));
         mask.resize(std::size_t(L));
+        positive.resize(std::size_t(K));
     }
 
-    cv::Mat fuse(const std::vector<cv::Mat>& frames) {
+    const cv::Mat& fuse(const std::vector<cv::Mat>& frames) {
+        if (method == "laplacian") return laplacian(frames);
+        if (method == "brovey") return brovey(frames);
+        result.create(frames[0].size(), CV_32FC3);  // channel-sum: R of frame 0, G of 1, B of 2
+        const int from_to[] = {0, 0, 4, 1, 8, 2};
+        cv::mixChannels(frames.data(), 3, &result, 1, from_to, 3);
+        return result;
+    }
+
+    const cv::Mat& laplacian(const std::vector<cv::Mat>& frames) {
         for (int k = 0; k < K; ++k) {
             auto& g = gauss[std::size_t(k)];
             g[0] = frames[std::size_t(k)];
@@ -110,14 +151,38 @@ struct Pipeline {
                 abs_k[std::size_t(l)].copyTo(abs_best[std::size_t(l)], mask[std::size_t(l)]);
             }
         }
-        gauss[0][std::size_t(L)].copyTo(top_sum);  // base: the mean of the tops
-        for (int k = 1; k < K; ++k) cv::add(top_sum, gauss[std::size_t(k)][std::size_t(L)], top_sum);
-        top_sum.convertTo(fused[std::size_t(L)], CV_32F, 1.0 / K);
+        gauss[0][std::size_t(L)].copyTo(sum);  // base: the mean of the tops
+        for (int k = 1; k < K; ++k) cv::add(sum, gauss[std::size_t(k)][std::size_t(L)], sum);
+        sum.convertTo(fused[std::size_t(L)], CV_32F, 1.0 / K);
         fused[std::size_t(L)].copyTo(result);
         for (int l = L - 1; l >= 0; --l) {
             cv::pyrUp(result, up[std::size_t(l)], fused[std::size_t(l)].size());
             cv::add(up[std::size_t(l)], fused[std::size_t(l)], result);
         }
+        return result;
+    }
+
+    // sum_k p_k I_k / s with p_k = max(I_k, 0), s = sum_k p_k; the mean of
+    // the frames where s < 1e-6.
+    const cv::Mat& brovey(const std::vector<cv::Mat>& frames) {
+        for (int k = 0; k < K; ++k) {
+            cv::max(frames[std::size_t(k)], 0.0, positive[std::size_t(k)]);
+            cv::multiply(positive[std::size_t(k)], frames[std::size_t(k)], product);
+            if (k == 0) {
+                positive[0].copyTo(sum);
+                product.copyTo(weighted);
+            } else {
+                cv::add(sum, positive[std::size_t(k)], sum);
+                cv::add(weighted, product, weighted);
+            }
+        }
+        cv::divide(weighted, sum, result);
+        cv::compare(sum, brovey_threshold(), dark, cv::CMP_LT);
+        if (cv::countNonZero(dark.reshape(1)) == 0) return result;
+        frames[0].copyTo(product);
+        for (int k = 1; k < K; ++k) cv::add(product, frames[std::size_t(k)], product);
+        product.convertTo(product, CV_32F, 1.0 / K);
+        product.copyTo(result, dark);
         return result;
     }
 
@@ -150,6 +215,10 @@ struct Pipeline {
     }
 };
 
+std::string peer_name(const std::string& method) {
+    return std::string("opencv-c++ ") + CV_VERSION + (method == "laplacian" ? " pyrDown/pyrUp" : "");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -161,8 +230,10 @@ int main(int argc, char** argv) {
         std::vector<cv::Mat> frames;
         for (auto& img : images) frames.push_back(as_mat(img));
         const cv::Mat background = as_mat(bg_image);
+        for (const auto& f : frames)
+            if (f.size() != background.size()) throw std::invalid_argument("frames and background differ in size");
         cv::setNumThreads(2);
-        Pipeline p(frames, a.levels);
+        Pipeline p(a.method, int(frames.size()), a.levels);
         double m[3];
         using clock = std::chrono::steady_clock;
         auto start = clock::now();
@@ -182,13 +253,13 @@ int main(int argc, char** argv) {
         std::sort(sorted.begin(), sorted.end());
         const double median = sorted.size() % 2 ? sorted[sorted.size() / 2]
                                                 : (sorted[sorted.size() / 2 - 1] + sorted[sorted.size() / 2]) / 2;
-        std::printf("{\"peer\": \"opencv-c++ %s pyrDown/pyrUp\", \"median_ms\": %.17g, \"min_ms\": %.17g, "
-                    "\"max_ms\": %.17g, \"runs\": %d, \"sharpness\": %.17g, \"contrast\": %.17g, "
-                    "\"background_diff\": %.17g}\n",
-                    CV_VERSION, median, sorted.front(), sorted.back(), runs, m[0], m[1], m[2]);
+        std::printf("{\"peer\": \"%s\", \"median_ms\": %.17g, \"min_ms\": %.17g, \"max_ms\": %.17g, \"runs\": %d, "
+                    "\"sharpness\": %.17g, \"contrast\": %.17g, \"background_diff\": %.17g}\n",
+                    peer_name(a.method).c_str(), median, sorted.front(), sorted.back(), runs, m[0], m[1], m[2]);
         return 0;
     } catch (const std::exception& e) {  // vkfuse::Error, cv::Exception and bad arguments alike
-        std::fprintf(stderr, "vkfuse-bench-peer-opencv: %s\n", e.what());
+        const std::string what = e.what();  // cv::Exception's ends in a newline
+        std::fprintf(stderr, "vkfuse-bench-peer-opencv: %s\n", what.substr(0, what.find('\n')).c_str());
         return 2;
     }
 }
