@@ -50,9 +50,10 @@ Output:
                     (floor_ms / median_ms), peer, peer_failure, peer_median_ms,
                     peer_ms_per_sensor, peer_runs, peer_max_abs_err,
                     peer_mean_abs_err, peer_metric_rel_err,
-                    peer_speedup (peer_median_ms / median_ms); for Laplacian
-                    cells the OpenCV C++ pipeline: cpp_peer, cpp_peer_failure,
-                    cpp_peer_median_ms, cpp_peer_max_abs_err, cpp_peer_speedup
+                    peer_speedup (peer_median_ms / median_ms); for Laplacian,
+                    Brovey and channel-sum cells the OpenCV C++ pipeline, the
+                    same fields prefixed cpp_peer (cpp_peer, cpp_peer_failure,
+                    cpp_peer_median_ms, ..., cpp_peer_speedup)
   --plot FILE.svg   log-log time per sensor-cycle against max abs error,
                     coloured by method, marked by backend and precision
   --profile         per-stage GPU times from Plan::profile() (median over runs)
@@ -88,6 +89,11 @@ How it measures:
   The peer (bench/peers/pipelines.py with /usr/bin/python3, else python3, needing
   numpy, pywt and cv2) times its own loop (>= 5 runs) on sensor 0's frames in
   float32; for S > 1 its time is S times that (Python fuses sensors in turn).
+  The C++ peer (vkfuse-bench-peer-opencv, built where CMake finds OpenCV)
+  does the same with OpenCV's C++ API on 2 threads, reusing its buffers.
+  floor_ms prices the ideal pipeline of the cell's method and shape
+  (bench/floor_model.cpp: its accesses at half a bound vec4 copy each, its
+  flops at the multiply-add rate, its dispatches) at these probed costs.
 
 Exit status: 0 done, 1 a run-time failure, 2 bad command line (one-line message).
 )";

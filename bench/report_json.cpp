@@ -82,24 +82,21 @@ void add_measurements(Members& o, const CellResult& r) {
     o.add("load_average", when(r.load_average));
 }
 
-void add_peer(Members& o, const CellResult& r) {
-    const PeerResult* p = r.peer && r.peer->failure.empty() ? &*r.peer : nullptr;
+// One peer's fields, named `prefix`, `prefix`_median_ms, ...: "peer" for the
+// Python pipeline, "cpp_peer" for the OpenCV C++ one.
+void add_peer(Members& o, const std::string& prefix, const std::optional<PeerResult>& peer,
+              std::optional<double> cell_ms, std::optional<double> speedup) {
+    const PeerResult* p = peer && peer->failure.empty() ? &*peer : nullptr;
     auto peer_value = [p](double v) { return p ? std::optional<double>(v) : std::nullopt; };
-    o.add("peer", text_if(p, p ? p->name : ""));
-    o.add("peer_failure", text_if(r.peer && !r.peer->failure.empty(), r.peer ? r.peer->failure : ""));
-    o.add("peer_median_ms", r.peer_cell_ms());
-    o.add("peer_ms_per_sensor", peer_value(p ? p->per_sensor.median_ms : 0));
-    o.add("peer_runs", peer_value(p ? p->per_sensor.runs : 0));
-    o.add("peer_max_abs_err", peer_value(p ? p->error.max_abs : 0));
-    o.add("peer_mean_abs_err", peer_value(p ? p->error.mean_abs() : 0));
-    o.add("peer_metric_rel_err", p ? metric_errors(p->metric_error) : Value(nullptr));
-    o.add("peer_speedup", r.peer_speedup());
-    const PeerResult* c = r.cpp_peer && r.cpp_peer->failure.empty() ? &*r.cpp_peer : nullptr;
-    o.add("cpp_peer", text_if(c, c ? c->name : ""));
-    o.add("cpp_peer_failure", text_if(r.cpp_peer && !r.cpp_peer->failure.empty(), r.cpp_peer ? r.cpp_peer->failure : ""));
-    o.add("cpp_peer_median_ms", r.cpp_peer_cell_ms());
-    o.add("cpp_peer_max_abs_err", c ? std::optional<double>(c->error.max_abs) : std::nullopt);
-    o.add("cpp_peer_speedup", r.cpp_peer_speedup());
+    o.add(prefix, text_if(p, p ? p->name : ""));
+    o.add(prefix + "_failure", text_if(peer && !peer->failure.empty(), peer ? peer->failure : ""));
+    o.add(prefix + "_median_ms", cell_ms);
+    o.add(prefix + "_ms_per_sensor", peer_value(p ? p->per_sensor.median_ms : 0));
+    o.add(prefix + "_runs", peer_value(p ? p->per_sensor.runs : 0));
+    o.add(prefix + "_max_abs_err", peer_value(p ? p->error.max_abs : 0));
+    o.add(prefix + "_mean_abs_err", peer_value(p ? p->error.mean_abs() : 0));
+    o.add(prefix + "_metric_rel_err", p ? metric_errors(p->metric_error) : Value(nullptr));
+    o.add(prefix + "_speedup", speedup);
 }
 
 }  // namespace
@@ -109,7 +106,8 @@ const std::vector<std::string>& json_required_fields() {
         "method", "wavelet", "levels", "backend", "device", "driver", "precision", "width", "height", "frames", "sensors",
         "skipped", "median_ms", "min_ms", "max_ms", "runs", "throughput_cycles_s", "mpixels_s", "max_abs_err",
         "mean_abs_err", "samples_over_1e-5", "metric_rel_err", "kernel_ms", "bytes_per_cycle", "copy_bandwidth_gbs",
-        "bandwidth_fraction", "kernel_copy_ns_per_float", "floor_ms", "floor_fraction", "peer", "peer_median_ms", "peer_max_abs_err", "peer_speedup"};
+        "bandwidth_fraction", "kernel_copy_ns_per_float", "floor_ms", "floor_fraction", "peer", "peer_median_ms",
+        "peer_max_abs_err", "peer_speedup", "cpp_peer", "cpp_peer_median_ms", "cpp_peer_max_abs_err", "cpp_peer_speedup"};
     return fields;
 }
 
@@ -117,7 +115,8 @@ json::Value cell_json(const CellResult& r) {
     Members o;
     add_identity(o, r);
     add_measurements(o, r);
-    add_peer(o, r);
+    add_peer(o, "peer", r.peer, r.peer_cell_ms(), r.peer_speedup());
+    add_peer(o, "cpp_peer", r.cpp_peer, r.cpp_peer_cell_ms(), r.cpp_peer_speedup());
     return o.done();
 }
 

@@ -1,5 +1,6 @@
 #include "report_table.hpp"
 
+#include <optional>
 #include <string>
 
 namespace vkfuse::bench {
@@ -16,10 +17,8 @@ std::string fmt(const char* format, double v) {
     return text;
 }
 
-// The peer's time for the cell and how many times slower it is.
-std::string peer_columns(const CellResult& r) {
-    const auto ms = r.peer_cell_ms();
-    const auto speedup = r.peer_speedup();
+// A peer's time for the cell and how many times slower it is than the cell.
+std::string peer_columns(std::optional<double> ms, std::optional<double> speedup) {
     return (ms ? fmt("%10.2f", *ms) : std::string(9, ' ') + "-") + " " +
            (speedup ? fmt("%8.2fx", *speedup) : std::string(8, ' ') + "-");
 }
@@ -27,9 +26,11 @@ std::string peer_columns(const CellResult& r) {
 }  // namespace
 
 void print_table_header(std::FILE* out) {
-    std::fprintf(out, "%-22s %-6s %-4s %-6s %2s %3s %9s %9s %9s %5s %9s %8s %9s %9s %9s %6s %6s %10s %9s %8s %5s\n", "method",
-                 "backend", "prec", "size", "K", "S", "median_ms", "min_ms", "max_ms", "runs", "sensor/s", "Mpix/s", "max|err|", "mean|err|",
-                 "metric_re", ">1e-5", "bw%", "peer_ms", "peer/this", "floor_ms", "floor");
+    // peer: the Python pipeline; c++: the OpenCV C++ one; floor: floor_ms / median_ms.
+    std::fprintf(out, "%-22s %-6s %-4s %-6s %2s %3s %9s %9s %9s %5s %9s %8s %9s %9s %9s %6s %6s %10s %9s %10s %9s %8s %5s\n",
+                 "method", "backend", "prec", "size", "K", "S", "median_ms", "min_ms", "max_ms", "runs", "sensor/s", "Mpix/s",
+                 "max|err|", "mean|err|", "metric_re", ">1e-5", "bw%", "peer_ms", "peer/this", "c++_ms", "c++/this",
+                 "floor_ms", "floor");
 }
 
 void print_row(std::FILE* out, const CellResult& r) {
@@ -42,14 +43,13 @@ void print_row(std::FILE* out, const CellResult& r) {
     }
     const auto bw = r.bandwidth_fraction();
     const auto floor = r.floor_fraction();
-    std::fprintf(out, "%9.2f %9.2f %9.2f %4d%s %9.2f %8.2f %9.2e %9.2e %9.2e %6zu %6s %s %s\n", r.timing.median_ms,
+    std::fprintf(out, "%9.2f %9.2f %9.2f %4d%s %9.2f %8.2f %9.2e %9.2e %9.2e %6zu %6s %s %s %s\n", r.timing.median_ms,
                  r.timing.min_ms, r.timing.max_ms, r.timing.runs, r.timing.capped ? "*" : " ", r.throughput(),
                  r.mpixels_per_second(), r.error.max_abs, r.error.mean_abs(), r.metric_error.worst(),
-                 r.error.over_tolerance, bw ? fmt("%5.2f%%", 100 * *bw).c_str() : "-", peer_columns(r).c_str(),
+                 r.error.over_tolerance, bw ? fmt("%5.2f%%", 100 * *bw).c_str() : "-",
+                 peer_columns(r.peer_cell_ms(), r.peer_speedup()).c_str(),
+                 peer_columns(r.cpp_peer_cell_ms(), r.cpp_peer_speedup()).c_str(),
                  floor ? (fmt("%8.2f", *r.floor_ms) + fmt(" %5.2f", *floor)).c_str() : "       -     -");
-    if (const auto cpp = r.cpp_peer_speedup())
-        std::fprintf(out, "    C++ peer (%s): %.2f ms, %.2fx this cell's time\n", r.cpp_peer->name.c_str(),
-                     *r.cpp_peer_cell_ms(), *cpp);
     if (r.stages.empty()) return;
     std::string line = "    stages (median ms):";
     for (const auto& s : r.stages) line += " " + s.name + fmt(" %.2f", s.median_ms);

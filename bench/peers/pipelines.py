@@ -99,7 +99,7 @@ def peer_name(method):
     names = [f"numpy {np.__version__}"]
     if method == "laplacian":
         import cv2
-        names.insert(0, f"opencv {cv2.__version__} pyrDown/pyrUp")
+        names.insert(0, f"opencv-python {cv2.__version__} pyrDown/pyrUp")
     if method == "wavelet":
         import pywt
         names.insert(0, f"pywt {pywt.__version__} wavedec2/waverec2")
