@@ -82,10 +82,10 @@ How it measures:
   uploaded). bytes_per_cycle counts the S*K frames up and S fused images down;
   bandwidth_fraction relates it to a buffer copy measured at start.
   Also at start of a run with Vulkan cells, probe kernels measure what any
-  kernel pays on the device: ns per float copied through device addresses (how
-  vkfuse kernels reach memory), through descriptor-bound buffers and as vec4; a
-  shared-memory exchange; the multiply-add rate; one small dispatch. Each
-  probe's output is checked.
+  kernel pays on the device: ns per float copied through device addresses (plans
+  beyond maxStorageBufferRange), through descriptor-bound buffers (every other
+  plan) and as vec4; a shared-memory exchange; the multiply-add rate; one small
+  dispatch. Each probe's output is checked.
   The peer (bench/peers/pipelines.py with /usr/bin/python3, else python3, needing
   numpy, pywt and cv2) times its own loop (>= 5 runs) on sensor 0's frames in
   float32; for S > 1 its time is S times that (Python fuses sensors in turn).
