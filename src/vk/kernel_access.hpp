@@ -1,9 +1,9 @@
 // What a compute kernel pays on this device to reach memory and to compute,
 // measured with small probe kernels: the floor under every vkfuse kernel's run
-// time. vkfuse's kernels reach their buffers through device addresses; the
-// descriptor-bound and vec4 figures show what the other access paths cost on
-// the same device, and the shared-memory figure what a tiled kernel would pay
-// to exchange halos. On a GPU these are tiny; on a CPU implementation such as
+// time. vkfuse's kernels reach their buffers through descriptor bindings
+// (device addresses only in plans beyond maxStorageBufferRange); the figures
+// show what each path costs per float and per vec4 on the device, and the
+// shared-memory figure what a tiled kernel would pay to exchange halos. On a GPU these are tiny; on a CPU implementation such as
 // lavapipe they bound how fast any kernel can be.
 #pragma once
 #include <cstdint>
