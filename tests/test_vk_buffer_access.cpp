@@ -18,14 +18,8 @@ namespace {
 
 Context& addressed_context() {
     static Context ctx([] {
-        ContextOptions o;
-        o.validation = true;
+        ContextOptions o = validated_options();
         o.device_addresses_only = true;
-        o.on_validation_message = [](const std::string& m) {
-            auto& log = validation_log();
-            std::lock_guard lock(log.mutex);
-            log.messages.push_back(m);
-        };
         return o;
     }());
     return ctx;

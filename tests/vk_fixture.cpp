@@ -7,17 +7,19 @@ ValidationLog& validation_log() {
     return log;
 }
 
+ContextOptions validated_options() {
+    ContextOptions o;
+    o.validation = true;
+    o.on_validation_message = [](const std::string& m) {
+        auto& log = validation_log();
+        std::lock_guard lock(log.mutex);
+        log.messages.push_back(m);
+    };
+    return o;
+}
+
 Context& shared_context() {
-    static Context ctx([] {
-        ContextOptions o;
-        o.validation = true;
-        o.on_validation_message = [](const std::string& m) {
-            auto& log = validation_log();
-            std::lock_guard lock(log.mutex);
-            log.messages.push_back(m);
-        };
-        return o;
-    }());
+    static Context ctx(validated_options());
     return ctx;
 }
 

@@ -19,6 +19,8 @@ struct ValidationLog {
 
 ValidationLog& validation_log();
 Context& shared_context();  // created on first use with validation on
+// Validation on, every message into validation_log(): what shared_context uses.
+ContextOptions validated_options();
 
 class VulkanTest : public ::testing::Test {
 protected:

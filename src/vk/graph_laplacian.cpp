@@ -54,30 +54,24 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
         if (top) {  // the base rule on G_L itself
             const PlaneView top_in{c.gauss, int(c.w), c.w * c.h}, top_out{c.fused, int(c.w), c.w * c.h};
             record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h)});
-        } else if (c.w % 8 == 0) {  // 2 x 8 outputs per invocation, plane4 loads and stores
-            const DeviceSpan coarse_span = g.span(coarse.gauss);
-            g.rec.dispatch("lap_fuse4", {g.span(c.gauss), coarse_span, coarse_span, g.span(c.fused)},
-                           PushConstants()
-                               .i32(int(c.w))
-                               .i32(int(c.h))
-                               .i32(int(coarse.w))
-                               .i32(int(coarse.h))
-                               .u32(std::uint32_t(g.cfg.frames))
-                               .u32(std::uint32_t(g.cfg.channels))
-                               .u32(rule_id(g.cfg.fusion.detail_rule)),
-                           groups(coarse.w / 4, 16), groups(coarse.h, 16), g.planes_out());
-        } else {  // the detail rule on G_l - pyrUp(G_{l+1}), 2 x 2 outputs per invocation
-            g.rec.dispatch("lap_fuse", {g.span(c.gauss), g.span(coarse.gauss), g.span(c.fused)},
-                           PushConstants()
-                               .i32(int(c.w))
-                               .i32(int(c.h))
-                               .i32(int(coarse.w))
-                               .i32(int(coarse.h))
-                               .u32(std::uint32_t(g.cfg.frames))
-                               .u32(std::uint32_t(g.cfg.channels))
-                               .u32(rule_id(g.cfg.fusion.detail_rule)),
-                           groups(coarse.w, 16), groups(coarse.h, 16), g.planes_out());
+            continue;
         }
+        // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the same scalars.
+        const PushConstants scalars = PushConstants()
+                                          .i32(int(c.w))
+                                          .i32(int(c.h))
+                                          .i32(int(coarse.w))
+                                          .i32(int(coarse.h))
+                                          .u32(std::uint32_t(g.cfg.frames))
+                                          .u32(std::uint32_t(g.cfg.channels))
+                                          .u32(rule_id(g.cfg.fusion.detail_rule));
+        const DeviceSpan src = g.span(c.gauss), up = g.span(coarse.gauss), dst = g.span(c.fused);
+        if (c.w % 8 == 0)  // 2 x 8 outputs per invocation, plane4 loads and stores
+            g.rec.dispatch("lap_fuse4", {src, up, up, dst}, scalars, groups(coarse.w / 4, 16), groups(coarse.h, 16),
+                           g.planes_out());
+        else  // 2 x 2 outputs per invocation
+            g.rec.dispatch("lap_fuse", {src, up, dst}, scalars, groups(coarse.w, 16), groups(coarse.h, 16),
+                           g.planes_out());
     }
     g.rec.mark("lap_fuse");
     for (int l = L - 1; l >= 0; --l) {
