@@ -66,31 +66,3 @@ void rule_add(inout RuleState st, uint rule, uint k, float v) {
 float rule_result(RuleState st, uint rule, uint frames) {
     return rule == RULE_MEAN ? st.sum / float(frames) : st.pick;
 }
-
-// Compensated dot products (Ogita, Rump and Oishi's Dot2): each product's
-// rounding error (through fma) and each addition's (Knuth's TwoSum) go into
-// a second accumulator, so a filter output carries about twice float's
-// precision and is rounded once. Arithmetic is cheap next to loads here; what
-// it buys is that a rig re-fusing its own output (the stress suite's 100
-// feedback passes) meets far smaller roundings per pass. `precise` keeps the
-// compiler from reassociating the error terms away; where fma is not fused,
-// the product error reads 0 and only the additions are compensated.
-struct Dot2 {
-    float sum;
-    float err;
-};
-
-void dot2_add(inout Dot2 d, float a, float b) {
-    precise float p = a * b;
-    precise float product_err = fma(a, b, -p);
-    precise float t = d.sum + p;
-    precise float z = t - d.sum;
-    precise float sum_err = (d.sum - (t - z)) + (p - z);
-    d.sum = t;
-    d.err += product_err + sum_err;
-}
-
-float dot2_result(Dot2 d) {
-    precise float r = d.sum + d.err;
-    return r;
-}

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "common.glsl"
+#include "compensated.glsl"
 #include "line.glsl"
 #include "filter_taps.glsl"
 // One level of pywt's periodization DWT along a line (exactly

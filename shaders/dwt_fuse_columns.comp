@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "common.glsl"
+#include "compensated.glsl"
 #include "filter_taps.glsl"
 // The column pass of one periodization DWT level (as dwt_forward.comp) and the
 // fusion of that level's coefficients across the K frames (as rule_fuse.comp)

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "common.glsl"
+#include "compensated.glsl"
 #include "line.glsl"
 #include "filter_taps.glsl"
 // One level of pywt's periodization inverse DWT along a line (exactly
@@ -35,7 +36,7 @@ void main() {
     [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         if (o0 + b >= M) break;
         [[unroll]] for (int p = 0; p < 2; ++p) {
-            Dot2 acc = Dot2(0.0, 0.0);
+            Dot2 acc = dot2_of(0.0);
             [[unroll]] for (int j = 0; j < Hf; ++j) {  // coefficient o + start - j is window slot b + Hf - 1 - j
                 TAP_ADD(acc, rec_lo(2 * j + p), low[b + Hf - 1 - j]);
                 TAP_ADD(acc, rec_hi(2 * j + p), high[b + Hf - 1 - j]);

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "common.glsl"
+#include "compensated.glsl"
 #include "filter_taps.glsl"
 // dwt_forward.comp along rows, for lines whose half length is a multiple of 8
 // and whose rows and planes start on a quad: an invocation computes 8
@@ -50,7 +51,7 @@ void main() {
     }
     float lo[PAIRS], hi[PAIRS];
     [[unroll]] for (int b = 0; b < PAIRS; ++b) {
-        Dot2 l = Dot2(0.0, 0.0), h = Dot2(0.0, 0.0);
+        Dot2 l = dot2_of(0.0), h = dot2_of(0.0);
         [[unroll]] for (int j = 0; j < F; ++j) {  // x[F/2 + 2o - j] is window sample 2b + F - 1 - j
             TAP_ADD(l, dec_lo(j), win[SHIFT + 2 * b + F - 1 - j]);
             TAP_ADD(h, dec_hi(j), win[SHIFT + 2 * b + F - 1 - j]);

@@ -87,7 +87,7 @@ int window_sample(int o0, int i, int half_len, int n) {
 // compensated dot product (Dot2) rounded once; x[F/2 + 2o - j] is slot
 // 2b + F - 1 - j.
 vec2 analyse(float win[WINDOW], int b) {
-    Dot2 lo = Dot2(0.0, 0.0), hi = Dot2(0.0, 0.0);
+    Dot2 lo = dot2_of(0.0), hi = dot2_of(0.0);
     [[unroll]] for (int j = 0; j < F; ++j) {
         TAP_ADD(lo, dec_lo(j), win[2 * b + F - 1 - j]);
         TAP_ADD(hi, dec_hi(j), win[2 * b + F - 1 - j]);

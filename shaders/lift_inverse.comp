@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "compensated.glsl"
 #include "line.glsl"
 #define LIFT_COEF src  // undone in place in the input
 #include "lifting.glsl"

@@ -27,12 +27,12 @@ void lift_step(LineView v, uint plane, int line, int n, int s, float sign) {
     float c0 = BUF(scheme).v[base + 2u], c1 = BUF(scheme).v[base + 3u];
     int o0 = int(BUF(scheme).v[base + 4u]), o1 = int(BUF(scheme).v[base + 5u]);
     for (int q = parity; q < n; q += 2) {
-        // x + sign * (c0 a + c1 b) as one compensated sum rounded once (Dot2,
-        // common.glsl): a plain-float step rounds three times, and symmetric
-        // bior4.4's eight steps per level made a fed-back image drift 1.01e-5
-        // in 100 passes; compensated, 8.1e-6 (tests/stress/test_stress_feedback).
+        // x + sign * (c0 a + c1 b) as one sum rounded once (compensated.glsl):
+        // a plain-float step rounds three times, and symmetric bior4.4's eight
+        // steps per level made a fed-back image drift past the stress suite's
+        // bound (tests/stress/test_stress_feedback).
         uint at = lift_slot(v, plane, line, q);
-        Dot2 d = Dot2(float(BUF(LIFT_COEF).v[at]), 0.0);
+        Dot2 d = dot2_of(float(BUF(LIFT_COEF).v[at]));
         dot2_add(d, sign * c0, BUF(LIFT_COEF).v[lift_slot(v, plane, line, reflect101(q + o0, n))]);
         if (taps > 1) dot2_add(d, sign * c1, BUF(LIFT_COEF).v[lift_slot(v, plane, line, reflect101(q + o1, n))]);
         BUF(LIFT_COEF).v[at] = TO_PLANE(dot2_result(d));

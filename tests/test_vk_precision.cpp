@@ -71,8 +71,9 @@ TEST_F(VulkanPrecision, BackgroundMeanOf100FloatFramesWithinOneRounding) {
 // One fusion of a frame with itself (base rule mean of two equal values,
 // detail rule max-abs of two equal values) is, up to rounding, the identity:
 // the double reference returns the frame to ~1e-16. On the GPU each filter
-// output is a compensated dot product rounded once (Dot2, common.glsl) and
-// each lifting step one compensated sum (lift_step, lifting.glsl), so one
+// output is a dot product rounded once (compensated.glsl, in either filter
+// arithmetic) and each lifting step one sum rounded once (lift_step,
+// lifting.glsl), so one
 // level forward and back stays within a few ulps of the frame, and on
 // average well under one; plain float dot products and lifting steps round
 // at every term. Frames lie in [0.5, 1] (one binade: an ulp is 2^-24 at 0.5,
@@ -134,9 +135,11 @@ TEST_F(VulkanPrecision, OneFilterPassWithinAFewUlps) {
     const ImageD frame = upper_binade_frame(h, w);
     const std::vector<ImageD> frames{frame, frame};
     const Image f32 = convert<float>(frame);
+    for (Context* context : filter_arithmetic_contexts())
     for (const FilterCase& fc : kFilterCases) {
+        const std::string arithmetic = to_string(context->filter_arithmetic());
         const FusionSpec spec = one_level(fc.wavelet, fc.mode);
-        SCOPED_TRACE(name_of(spec));
+        SCOPED_TRACE(name_of(spec) + ", " + arithmetic);
         PlanConfig cfg;
         cfg.fusion = spec;
         cfg.height = h;
@@ -144,12 +147,13 @@ TEST_F(VulkanPrecision, OneFilterPassWithinAFewUlps) {
         cfg.channels = 1;
         cfg.frames = 2;
         cfg.want_metrics = false;
-        Plan plan = run_plan(ctx(), cfg, {f32, f32});
+        Plan plan = run_plan(*context, cfg, {f32, f32});
         const ImageD ref = fuse_reference(frames, spec);
         ASSERT_LE(max_abs_diff(ref, frame), 1e-12);  // the reference: the identity
         const double worst = max_ulps(as_double(plan.fused(0)), ref.data);
         const double mean = mean_abs_error(plan.fused(0), ref) / kUnit;
-        std::printf("%-22s one level: mean %.3f x 2^-24, worst %.0f ulps\n", name_of(spec).c_str(), mean, worst);
+        std::printf("%-22s %-19s one level: mean %.3f x 2^-24, worst %.0f ulps\n", name_of(spec).c_str(),
+                    arithmetic.c_str(), mean, worst);
         EXPECT_LE(worst, fc.max_ulps + 1e-3);  // the reference is the frame only to ~1e-16
         EXPECT_LE(mean, fc.mean_bound);
     }
@@ -173,9 +177,11 @@ TEST_F(VulkanPrecision, FeedbackDrift) {
     };
     const int h = 96, w = 128;
     const ImageD frame = upper_binade_frame(h, w);
+    for (Context* context : filter_arithmetic_contexts())
     for (const Case& c : cases) {
+        const std::string arithmetic = to_string(context->filter_arithmetic());
         const FusionSpec spec = one_level(c.wavelet, c.mode);
-        SCOPED_TRACE(name_of(spec));
+        SCOPED_TRACE(name_of(spec) + ", " + arithmetic);
         PlanConfig cfg;
         cfg.fusion = spec;
         cfg.height = h;
@@ -183,7 +189,7 @@ TEST_F(VulkanPrecision, FeedbackDrift) {
         cfg.channels = 1;
         cfg.frames = 2;
         cfg.want_metrics = false;
-        Plan plan(ctx(), cfg);
+        Plan plan(*context, cfg);
         Image current = convert<float>(frame);
         for (int pass = 0; pass < 20; ++pass) {
             const std::vector<FrameView> views{FrameView::of(current), FrameView::of(current)};
@@ -191,7 +197,8 @@ TEST_F(VulkanPrecision, FeedbackDrift) {
             current = plan.fused(0);
         }
         const double drift = mean_abs_error(current, frame);
-        std::printf("%-22s 20 passes: mean drift %.3g (bound %.3g)\n", name_of(spec).c_str(), drift, c.bound);
+        std::printf("%-22s %-19s 20 passes: mean drift %.3g (bound %.3g)\n", name_of(spec).c_str(),
+                    arithmetic.c_str(), drift, c.bound);
         EXPECT_LE(drift, c.bound);
     }
 }

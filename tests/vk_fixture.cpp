@@ -23,6 +23,28 @@ Context& shared_context() {
     return ctx;
 }
 
+std::string to_string(FilterArithmetic a) {
+    switch (a) {
+        case FilterArithmetic::Auto: return "auto";
+        case FilterArithmetic::Float64: return "float64";
+        case FilterArithmetic::CompensatedFloat32: return "compensated float32";
+    }
+    return "?";
+}
+
+std::vector<Context*> filter_arithmetic_contexts() {
+    Context& shared = shared_context();
+    const bool shared_is_float64 = shared.filter_arithmetic() == FilterArithmetic::Float64;
+    if (!shared_is_float64 && !shared.device().float64) return {&shared};
+    static Context other = [&] {
+        ContextOptions o = validated_options();
+        o.device_index = shared.device().index;
+        o.filter_arithmetic = shared_is_float64 ? FilterArithmetic::CompensatedFloat32 : FilterArithmetic::Float64;
+        return Context(o);
+    }();
+    return {&shared, &other};
+}
+
 void VulkanTest::SetUp() {
     shared_context();
     std::lock_guard lock(validation_log().mutex);

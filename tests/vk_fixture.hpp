@@ -21,6 +21,11 @@ ValidationLog& validation_log();
 Context& shared_context();  // created on first use with validation on
 // Validation on, every message into validation_log(): what shared_context uses.
 ContextOptions validated_options();
+// A validated context per filter arithmetic the device has: shared_context()
+// first, then, where the device also offers the other one, a context using it
+// (created on first use), so the path a GPU takes is tested on lavapipe too.
+std::vector<Context*> filter_arithmetic_contexts();
+std::string to_string(FilterArithmetic a);
 
 class VulkanTest : public ::testing::Test {
 protected:

@@ -14,17 +14,22 @@ constexpr CommandSpec kSpec{
     "list the Vulkan devices and say which one --backend auto uses",
     "vkfuse info",
     "Lists every Vulkan device the loader reports (index, name, driver, type, API\n"
-    "version, whether vkfuse can use it and whether it has the 16-bit storage\n"
-    "that Precision::Fp16Storage needs) and the device --backend auto picks.\n"
+    "version, whether vkfuse can use it, whether it has the 16-bit storage that\n"
+    "Precision::Fp16Storage needs and the doubles of float64 filter arithmetic)\n"
+    "and the device --backend auto picks, with the filter arithmetic it uses.\n"
     "Without a Vulkan loader or device it says so: the CPU reference path is used.",
     {},
     "vkfuse info",
 };
 
 void print_device(const DeviceInfo& d) {
+    std::string extras;
+    if (d.usable && d.fp16_storage) extras += "fp16 storage";
+    if (d.usable && d.float64) extras += extras.empty() ? "float64" : ", float64";
+    if (!extras.empty()) extras = " (" + extras + " too)";
     std::printf("  [%d] %s\n      type %s, driver %s, Vulkan %s: %s%s%s\n", d.index, d.name.c_str(), d.type.c_str(),
                 d.driver.c_str(), d.api_version.c_str(), d.usable ? "usable" : "not usable: ",
-                d.usable ? "" : d.why_not.c_str(), d.usable && d.fp16_storage ? " (fp16 storage too)" : "");
+                d.usable ? "" : d.why_not.c_str(), extras.c_str());
 }
 
 // Opens the device exactly as --backend auto would, so the answer cannot drift
@@ -33,7 +38,8 @@ void print_auto_choice() {
     try {
         Context context;
         const DeviceInfo& d = context.device();
-        std::printf("--backend auto uses device [%d] %s\n", d.index, d.name.c_str());
+        std::printf("--backend auto uses device [%d] %s, wavelet filters accumulating in %s\n", d.index, d.name.c_str(),
+                    context.filter_arithmetic() == FilterArithmetic::Float64 ? "float64" : "compensated float32");
     } catch (const Error& e) {
         if (e.kind() != ErrorKind::Device) throw;
         std::printf("--backend auto uses the CPU reference path (%s)\n", e.what());

@@ -17,6 +17,17 @@ struct DeviceInfo {
     bool usable = false;      // meets vkfuse's needs (Vulkan 1.2, buffer device address)
     std::string why_not;      // when !usable, the missing capability
     bool fp16_storage = false;  // 16-bit storage buffers and float16 in shaders: Precision::Fp16Storage
+    bool float64 = false;       // double arithmetic in shaders: FilterArithmetic::Float64
+};
+
+// How the wavelet filters accumulate an output before rounding it to float
+// once. Both meet the same tolerances (float64 a little closer to the double
+// reference; outputs may differ in the last bits); they differ in cost: a
+// double fma per tap, or about ten float operations per tap.
+enum class FilterArithmetic {
+    Auto,                // Float64 on CPU devices that have it (lavapipe), else CompensatedFloat32
+    Float64,             // a double accumulator (needs DeviceInfo::float64)
+    CompensatedFloat32,  // Dot2: a float sum and its error term (any device)
 };
 
 struct ContextOptions {
@@ -30,6 +41,7 @@ struct ContextOptions {
     // maxStorageBufferRange), which use device addresses. true: every plan
     // uses device addresses (to test or compare that path on any plan).
     bool device_addresses_only = false;
+    FilterArithmetic filter_arithmetic = FilterArithmetic::Auto;
 };
 
 // Owns a VkInstance, one VkDevice and its compute queue. Cheap to move, not
@@ -46,6 +58,8 @@ public:
     Context& operator=(const Context&) = delete;
 
     const DeviceInfo& device() const;
+    // The filter arithmetic in use: Float64 or CompensatedFloat32, never Auto.
+    FilterArithmetic filter_arithmetic() const;
     // Number of validation messages seen so far (0 unless validation is on).
     std::uint64_t validation_message_count() const;
 

@@ -51,6 +51,7 @@ Context::Impl::Impl(const ContextOptions& options)
     try {
         create_instance(validation);
         choose_device(options.device_index);
+        choose_filter_arithmetic(options.filter_arithmetic);
         create_device();
         create_layout();
     } catch (...) {
@@ -121,6 +122,19 @@ void Context::Impl::choose_device(int index) {
     api->vkGetPhysicalDeviceMemoryProperties(physical, &memory);
 }
 
+// Auto takes doubles where they are native vector lanes: on a CPU device one
+// double fma per tap is cheaper than Dot2's ten float operations (measured on
+// lavapipe: the wavelet's forward passes in 60 % of the time). A GPU's double
+// rate is often a small fraction of its float rate, so GPUs keep Dot2.
+void Context::Impl::choose_filter_arithmetic(FilterArithmetic wanted) {
+    if (wanted == FilterArithmetic::Float64 && !info.float64)
+        throw Error(ErrorKind::Device, info.name + ": float64 filter arithmetic asked for, but the device has no "
+                                                   "shaderFloat64");
+    if (wanted == FilterArithmetic::Auto)
+        wanted = info.float64 && info.type == "cpu" ? FilterArithmetic::Float64 : FilterArithmetic::CompensatedFloat32;
+    filter_arithmetic = wanted;
+}
+
 void Context::Impl::create_device() {
     std::uint32_t n = 0;
     api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
@@ -146,8 +160,12 @@ void Context::Impl::create_device() {
     f11.storageBuffer16BitAccess = info.fp16_storage;
     f12.shaderFloat16 = info.fp16_storage;
     f12.pNext = &f11;
+    // The _f64 kernels' doubles, enabled only when the context uses them.
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.features.shaderFloat64 = filter_arithmetic == FilterArithmetic::Float64 ? VK_TRUE : VK_FALSE;
+    f2.pNext = &f12;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    dci.pNext = &f12;
+    dci.pNext = &f2;
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
     vk::check(api->vkCreateDevice(physical, &dci, nullptr, &device), "vkCreateDevice");
@@ -254,6 +272,7 @@ Context::~Context() = default;
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
 const DeviceInfo& Context::device() const { return impl_->info; }
+FilterArithmetic Context::filter_arithmetic() const { return impl_->filter_arithmetic; }
 std::uint64_t Context::validation_message_count() const { return impl_->validation_messages.load(); }
 
 }  // namespace vkfuse

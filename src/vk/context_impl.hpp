@@ -28,6 +28,7 @@ struct Context::Impl {
     DeviceInfo info;
     bool timestamps = false;  // queue supports timestamp queries
     bool device_addresses_only = false;  // ContextOptions::device_addresses_only
+    FilterArithmetic filter_arithmetic = FilterArithmetic::CompensatedFloat32;  // resolved, never Auto
     // Shared by all kernels: set 0 of kMaxKernelBuffers storage buffers (the
     // bound variants, shaders/bindings.glsl) and kPushConstantBytes.
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
@@ -65,6 +66,7 @@ private:
 
     void create_instance(bool validation);
     void choose_device(int index);
+    void choose_filter_arithmetic(FilterArithmetic wanted);
     void create_device();
     void create_layout();
     void release();  // destroys every Vulkan object; safe to call twice

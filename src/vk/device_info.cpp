@@ -58,6 +58,7 @@ PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
         return e;
     }
     e.info.fp16_storage = f11.storageBuffer16BitAccess && f12.shaderFloat16;
+    e.info.float64 = f.features.shaderFloat64;
     e.info.usable = true;
     return e;
 }

@@ -2,7 +2,7 @@
 
 #include <string>
 
-
+#include "vk/shader_registry.hpp"
 #include "vkfuse/error.hpp"
 
 namespace vkfuse::vk {
@@ -55,19 +55,26 @@ void check_interface(Context::Impl& ctx, const std::string& kernel, std::size_t 
 
 }  // namespace
 
-void Recorder::begin_dispatch(const std::string& shader, std::span<const std::uint32_t> specialization) {
+std::string Recorder::kernel_name(const std::string& shader) const {
+    if (ctx_.filter_arithmetic == FilterArithmetic::Float64 && has_shader(shader + "_f64" + variant_))
+        return shader + "_f64" + variant_;
+    return shader + variant_;
+}
+
+void Recorder::begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization) {
     if (!first_)
         barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     first_ = false;
-    ctx_.api->vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(shader + variant_, specialization));
+    ctx_.api->vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(kernel, specialization));
 }
 
 void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
                         const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
                         std::span<const std::uint32_t> specialization) {
     if (gx == 0 || gy == 0 || gz == 0) return;
-    begin_dispatch(shader, specialization);
+    const std::string kernel = kernel_name(shader);
+    begin_dispatch(kernel, specialization);
     auto& api = *ctx_.api;
     PushConstants push;
     if (addressed_) {
@@ -77,7 +84,7 @@ void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceS
         api.vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.layout, 0, 1, &set, 0, nullptr);
     }
     push.append(scalars);
-    check_interface(ctx_, shader + variant_, addressed_ ? 0 : buffers.size(), push.size());
+    check_interface(ctx_, kernel, addressed_ ? 0 : buffers.size(), push.size());
     if (push.size() > 0)
         api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
     api.vkCmdDispatch(cmd_, gx, gy, gz);

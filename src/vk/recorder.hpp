@@ -18,7 +18,9 @@ public:
     // queries may be VK_NULL_HANDLE (no profiling). precision is appended to
     // every shader name dispatched ("" or "_fp16": the plan's precision).
     // Kernels get their buffers bound through sets made in `sets`, or, when
-    // `addressed`, as device addresses (the kernels' "_addr" variants).
+    // `addressed`, as device addresses (the kernels' "_addr" variants). A
+    // kernel built in both filter arithmetics (shaders/compensated.glsl) runs
+    // in the one the context chose: "_f64" before the rest where it is float64.
     Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
              DescriptorSets& sets, bool addressed);
 
@@ -48,7 +50,9 @@ private:
 
     void barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
                  VkAccessFlags dst_access);
-    void begin_dispatch(const std::string& shader, std::span<const std::uint32_t> specialization);
+    // The embedded variant of shader this recorder dispatches.
+    std::string kernel_name(const std::string& shader) const;
+    void begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization);
 };
 
 // A global memory barrier from (src, src_access) to (dst, dst_access). Its

@@ -24,6 +24,12 @@ constexpr Entry kShaders[] = {
 
 }  // namespace
 
+bool has_shader(const std::string& name) {
+    for (const auto& e : kShaders)
+        if (name == e.name) return true;
+    return false;
+}
+
 std::span<const std::uint32_t> shader_spirv(const std::string& name) {
     for (const auto& e : kShaders)
         if (name == e.name) return {e.words, e.count};

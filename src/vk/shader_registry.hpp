@@ -8,5 +8,7 @@ namespace vkfuse::vk {
 
 // SPIR-V words of shaders/<name>.comp; throws Error if there is no such shader.
 std::span<const std::uint32_t> shader_spirv(const std::string& name);
+// Whether a shader (variant) of that name is embedded.
+bool has_shader(const std::string& name);
 
 }  // namespace vkfuse::vk

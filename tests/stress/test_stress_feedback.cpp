@@ -13,10 +13,11 @@
 // the periodization kernels drop pywt's sqrt(2) from the taps where that
 // reconstructs closer to exactly in float (graph_wavelet.cpp, analysis_scale:
 // haar's and bior2.2's taps become exact; 3.3e-5 and 4.1e-5 before), and
-// every filter output and every lifting step is a compensated dot product
-// rounded once (Dot2 in common.glsl; periodization bior4.4 1.5e-5 and
-// symmetric bior4.4 1.01e-5 before). Any
-// compounding (growth faster than linear) fails every case.
+// every filter output and every lifting step is a dot product rounded once
+// (compensated.glsl; periodization bior4.4 1.5e-5 and symmetric bior4.4
+// 1.01e-5 with plain float sums). The wavelets run in every filter arithmetic
+// the device offers. Any compounding (growth faster than linear) fails every
+// case.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -65,14 +66,16 @@ std::vector<FeedbackRun> wavelet_runs(WaveletMode mode) {
 
 class StressFeedback : public VulkanTest {
 protected:
-    void feed_back(const std::vector<FeedbackRun>& runs, double bound) {
+    void feed_back(const std::vector<FeedbackRun>& runs, double bound, const std::vector<Context*>& contexts) {
         const Image first = structured_frame(kHeight, kWidth, 1, 17);
+        for (Context* context : contexts)
         for (const auto& [spec, K] : runs) {
-            const std::string what = "gpu feedback " + describe(spec) + " K=" + std::to_string(K);
+            const std::string what = "gpu feedback " + describe(spec) + " K=" + std::to_string(K) +
+                                     (spec.method == Method::Wavelet ? ", " + to_string(context->filter_arithmetic()) : "");
             SCOPED_TRACE(what);
             PlanConfig cfg{spec, kHeight, kWidth, 1, K, 1};
             cfg.want_metrics = false;
-            Plan plan(ctx(), cfg);
+            Plan plan(*context, cfg);
             Image current = first;
             double drift_at_10 = 0;
             for (int pass = 1; pass <= kPasses; ++pass) {
@@ -91,12 +94,17 @@ protected:
 };
 
 TEST_F(StressFeedback, LaplacianDownToOnePixel) {
-    feed_back(runs_of(method_spec(Method::Laplacian), method_spec(Method::Laplacian, levels_to_one_pixel(kHeight, kWidth))), kDrift);
+    feed_back(runs_of(method_spec(Method::Laplacian), method_spec(Method::Laplacian, levels_to_one_pixel(kHeight, kWidth))), kDrift,
+              {&ctx()});
 }
 
-TEST_F(StressFeedback, EveryWaveletPeriodization) { feed_back(wavelet_runs(WaveletMode::Periodization), kDrift); }
+TEST_F(StressFeedback, EveryWaveletPeriodization) {
+    feed_back(wavelet_runs(WaveletMode::Periodization), kDrift, filter_arithmetic_contexts());
+}
 
-TEST_F(StressFeedback, EveryWaveletSymmetric) { feed_back(wavelet_runs(WaveletMode::Symmetric), kDrift); }
+TEST_F(StressFeedback, EveryWaveletSymmetric) {
+    feed_back(wavelet_runs(WaveletMode::Symmetric), kDrift, filter_arithmetic_contexts());
+}
 
 // The double reference: pywt's bior4.4 taps, as published to 16 digits, are
 // biorthogonal only to ~1e-12, which 100 passes add up to 1.5e-10; every other
