@@ -248,26 +248,39 @@ TEST_F(VulkanFusion, RunsAreBitIdentical) {
     }
 }
 
+// Every kernel that reads the frames as uploaded (unpack, and the first
+// passes that read them themselves: rows of whole quads, 64 x 48) in 8-bit.
 TEST_F(VulkanFusion, EightBitFramesUnpackLikeFiles) {
-    const int h = 31, w = 29, c = 3;
-    std::vector<std::vector<std::uint8_t>> raw(2, std::vector<std::uint8_t>(std::size_t(h) * w * c));
-    std::vector<ImageD> ref(2, ImageD(h, w, c));
-    for (int k = 0; k < 2; ++k)
-        for (std::size_t i = 0; i < raw[std::size_t(k)].size(); ++i) {
-            raw[std::size_t(k)][i] = std::uint8_t((i * 37 + std::size_t(k) * 101) % 256);
-            ref[std::size_t(k)].data[i] = raw[std::size_t(k)][i] / 255.0;
-        }
-    FusionSpec s;  // mean rules: 8-bit frames tie in max-abs all the time
-    s.method = Method::Laplacian;
-    s.detail_rule = Rule::Mean;
-    PlanConfig cfg{s, h, w, c, 2, 1};
-    cfg.input = PixelType::U8;
-    cfg.want_metrics = false;
-    Plan plan(ctx(), cfg);
-    std::vector<FrameView> views;
-    for (auto& r : raw) views.push_back({r.data(), h, w, c, PixelType::U8});
-    plan.run(views);
-    EXPECT_LE(max_abs_diff(plan.fused(0), fuse_reference(ref, s)), kFusedTolerance);
+    std::vector<FusionSpec> specs(3);
+    specs[0].method = Method::Laplacian;
+    for (int i : {1, 2}) {
+        specs[std::size_t(i)].method = Method::Wavelet;
+        specs[std::size_t(i)].wavelet = Wavelet::Bior44;
+        specs[std::size_t(i)].mode = i == 1 ? WaveletMode::Periodization : WaveletMode::Symmetric;
+    }
+    for (FusionSpec s : specs)
+        for (auto [h, w] : {std::pair{31, 29}, {48, 64}})
+            for (int c : {1, 3}) {
+                SCOPED_TRACE(std::string(to_string(s.method)) + " " + std::to_string(w) + "x" + std::to_string(h) +
+                             "x" + std::to_string(c));
+                std::vector<std::vector<std::uint8_t>> raw(2, std::vector<std::uint8_t>(std::size_t(h) * w * c));
+                std::vector<ImageD> ref(2, ImageD(h, w, c));
+                for (int k = 0; k < 2; ++k)
+                    for (std::size_t i = 0; i < raw[std::size_t(k)].size(); ++i) {
+                        raw[std::size_t(k)][i] = std::uint8_t((i * 37 + std::size_t(k) * 101) % 256);
+                        ref[std::size_t(k)].data[i] = raw[std::size_t(k)][i] / 255.0;
+                    }
+                s.detail_rule = Rule::Mean;  // 8-bit frames tie in max-abs all the time
+                if (s.method == Method::Wavelet) s.levels = max_wavelet_levels(s.wavelet, h, w);
+                PlanConfig cfg{s, h, w, c, 2, 1};
+                cfg.input = PixelType::U8;
+                cfg.want_metrics = false;
+                Plan plan(ctx(), cfg);
+                std::vector<FrameView> views;
+                for (auto& r : raw) views.push_back({r.data(), h, w, c, PixelType::U8});
+                plan.run(views);
+                EXPECT_LE(max_abs_diff(plan.fused(0), fuse_reference(ref, s)), kFusedTolerance);
+            }
 }
 
 TEST_F(VulkanFusion, RejectsFramesOfTheWrongShape) {

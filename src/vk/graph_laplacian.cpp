@@ -20,7 +20,8 @@ constexpr std::uint32_t kPyrDownRows = 8;  // ROWS in pyr_down.comp
 
 }  // namespace
 
-VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input) {
+VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
+    const VkDeviceAddress input = frames.planes();
     const int L = g.cfg.fusion.effective_levels();
     std::vector<Level> lv(std::size_t(L) + 1);
     lv[0] = {std::uint32_t(g.cfg.width), std::uint32_t(g.cfg.height), input, 0};

@@ -136,17 +136,23 @@ public:
         }
     }
 
-    VkDeviceAddress record(VkDeviceAddress input) {
+    VkDeviceAddress record(FrameSource& input) {
         const auto& top = shapes_.front();
         const VkDeviceAddress scratch = g_.planes(std::uint64_t(g_.planes_in()) * top.h * top.bw);
         std::vector<PlaneView> fused;
-        PlaneView a{input, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
+        PlaneView a;
         const int L = int(shapes_.size());
         for (int l = 0; l < L; ++l) {
             const auto& s = shapes_[std::size_t(l)];
             PlaneView t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
             PlaneView d{g_.planes(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
-            forward(a, t, {s.w, s.cw, high(s.w, s.cw), s.h, true}, g_.planes_in());
+            const LineSpec rows{s.w, s.cw, high(s.w, s.cw), s.h, true};
+            if (l == 0 && rows_from_frames(rows)) {
+                forward_from_frames(input, t, rows);
+            } else {
+                if (l == 0) a = {input.planes(), g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
+                forward(a, t, rows, g_.planes_in());
+            }
             PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             if (periodization_) {
                 fuse_columns(t, d, f, s, l == L - 1);
@@ -219,6 +225,23 @@ private:
         }
     }
 
+    // The first row pass reads the frames as uploaded where its rows are whole
+    // quads of pixels and its pairs come eight at a time.
+    bool rows_from_frames(const LineSpec& ls) const {
+        return periodization_ && ls.half_len % 8 == 0 && ls.n % 4 == 0;
+    }
+    void forward_from_frames(const FrameSource& input, const PlaneView& dst, const LineSpec& ls) {
+        g_.rec.dispatch("dwt_rows_frames", {input.frames(), input.frames(), g_.span(dst.addr)},
+                        input.frame_fields()
+                            .i32(ls.n)
+                            .i32(ls.half_len)
+                            .i32(ls.lines)
+                            .i32(dst.row_stride)
+                            .u32(dst.plane_stride),
+                        groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16),
+                        std::uint32_t(g_.cfg.sensors * g_.cfg.frames), taps_);
+    }
+
     void forward(const PlaneView& src, const PlaneView& dst, const LineSpec& ls, std::uint32_t planes) {
         // Rows of whole quads: eight pairs per invocation, plane4 loads and stores.
         if (periodization_ && ls.along_rows && ls.half_len % 8 == 0 && src.row_stride % 4 == 0 &&
@@ -273,6 +296,6 @@ private:
 
 }  // namespace
 
-VkDeviceAddress record_wavelet(GraphBuilder& g, VkDeviceAddress input) { return WaveletGraph(g).record(input); }
+VkDeviceAddress record_wavelet(GraphBuilder& g, FrameSource& input) { return WaveletGraph(g).record(input); }
 
 }  // namespace vkfuse::vk

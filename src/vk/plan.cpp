@@ -93,19 +93,10 @@ void Plan::Impl::record() {
     if (pointwise) {
         fused_planes = record_pointwise(g, frames, cfg.want_fused ? std::optional(image) : std::nullopt);
     } else {
-        const VkDeviceAddress input = g.planes(std::uint64_t(g.planes_in()) * pixels);
-        const vk::DeviceSpan planes = g.span(input);
-        rec.dispatch("unpack", {frames, frames, planes, planes},
-                     vk::PushConstants()
-                         .u32(pixels)
-                         .u32(std::uint32_t(cfg.channels))
-                         .u32(cfg.input == PixelType::U8)
-                         .u32(quads),
-                     grid.x, grid.y, std::uint32_t(cfg.sensors * cfg.frames));
-        rec.mark("unpack");
+        vk::FrameSource input(g, frames);
         fused_planes = method == Method::Laplacian ? record_laplacian(g, input)
                        : method == Method::Wavelet ? record_wavelet(g, input)
-                                                   : input;  // passthrough: the frame is its own result
+                                                   : input.planes();  // passthrough: the frame is its own result
         if (cfg.want_fused && !vk::metrics_write_image(cfg)) {
             const vk::DeviceSpan fused = g.span(fused_planes);
             rec.dispatch("pack", {fused, fused, image, image},
@@ -420,6 +411,26 @@ bool needs_device_addresses(const PlanConfig& c, const VkPhysicalDeviceLimits& l
     // frame (a periodization block is up to one sample wider and taller).
     const double plane_set = double(c.sensors) * c.frames * c.channels * (double(c.height) + 1) * (double(c.width) + 1);
     return plane_set * 4 > double(limits.maxStorageBufferRange);
+}
+
+PushConstants FrameSource::frame_fields() const {
+    return PushConstants()
+        .u32(std::uint32_t(g_.cfg.width) * std::uint32_t(g_.cfg.height))
+        .u32(std::uint32_t(g_.cfg.channels))
+        .u32(g_.cfg.input == PixelType::U8);
+}
+
+VkDeviceAddress FrameSource::planes() {
+    if (planes_) return planes_;
+    const std::uint32_t pixels = std::uint32_t(g_.cfg.width) * std::uint32_t(g_.cfg.height);
+    const bool quads = pixels % 4 == 0;  // four pixels per invocation
+    const Grid grid = grid_1d(quads ? pixels / 4 : pixels, 256);
+    planes_ = g_.planes(std::uint64_t(g_.planes_in()) * pixels);
+    const DeviceSpan out = g_.span(planes_);
+    g_.rec.dispatch("unpack", {frames_, frames_, out, out}, frame_fields().u32(quads), grid.x, grid.y,
+                    std::uint32_t(g_.cfg.sensors * g_.cfg.frames));
+    g_.rec.mark("unpack");
+    return planes_;
 }
 
 VkDeviceAddress GraphBuilder::constants(const std::vector<float>& values) {

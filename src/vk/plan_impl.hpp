@@ -43,14 +43,32 @@ struct GraphBuilder {
 // variants.
 bool needs_device_addresses(const PlanConfig& cfg, const VkPhysicalDeviceLimits& limits);
 
-// Records the fusion of the unpacked input planes (S*K*C planes of H x W,
-// plane (s*K + k)*C + c) and returns the address of the fused planes (S*C
-// planes of H x W, plane s*C + c).
+// A cycle's input: the frames as uploaded (S*K frames, HWC, 8-bit or
+// float32; shaders/frames.glsl) and, on first request, the same samples
+// unpacked into planes (S*K*C planes of H x W, plane (s*K + k)*C + c) by an
+// unpack pass recorded then. A graph whose first passes read the frames
+// themselves never asks for the planes, and no unpack pass is recorded.
+class FrameSource {
+public:
+    FrameSource(GraphBuilder& g, DeviceSpan frames) : g_(g), frames_(frames) {}
+    DeviceSpan frames() const { return frames_; }
+    // The push fields frames.glsl reads: pixels, channels, is_u8.
+    PushConstants frame_fields() const;
+    VkDeviceAddress planes();
+
+private:
+    GraphBuilder& g_;
+    DeviceSpan frames_;
+    VkDeviceAddress planes_ = 0;
+};
+
+// Records the fusion of the input and returns the address of the fused
+// planes (S*C planes of H x W, plane s*C + c).
 // Brovey, channel-sum and the mean read the frames as uploaded and write the
 // fused image into `image` themselves (when given): no unpack, no pack.
 VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image);
-VkDeviceAddress record_laplacian(GraphBuilder& g, VkDeviceAddress input);
-VkDeviceAddress record_wavelet(GraphBuilder& g, VkDeviceAddress input);
+VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& input);
+VkDeviceAddress record_wavelet(GraphBuilder& g, FrameSource& input);
 
 // A set of planes as a strided 2-D view: plane p's sample (y, x) is
 // addr[p * plane_stride + y * row_stride + x], in plane samples. What the
