@@ -20,6 +20,10 @@ constexpr std::uint32_t kPyrDownRows = 8;  // ROWS in pyr_down.comp
 
 }  // namespace
 
+// Level 0's two readers (the first pyrDown and level 0's fusion) read the
+// unpacked planes: reading the frames as uploaded instead, every channel of a
+// frame per invocation as dwt_rows_frames does, costs more on lavapipe than
+// the unpack pass it saves (docs/architecture.md has the figures).
 VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
     const VkDeviceAddress input = frames.planes();
     const int L = g.cfg.fusion.effective_levels();
