@@ -8,7 +8,7 @@
 
 namespace vkfuse::bench {
 
-inline constexpr double kFusedTolerance = 1e-5;  // SPEC.md: Vulkan fp32 vs reference
+inline constexpr double kFusedTolerance = 1e-5;  // docs/spec.md: Vulkan fp32 vs reference
 
 // Accumulates over several sensors' images.
 struct FusedError {

@@ -12,7 +12,7 @@ namespace vkfuse::bench {
 enum class Backend { Cpu, Vulkan };
 
 // The plan's storage precision (vkfuse/plan.hpp): fp32, or fp16 storage
-// (SPEC.md's optional reduced-precision mode), a Vulkan-only axis that is
+// (docs/spec.md's optional reduced-precision mode), a Vulkan-only axis that is
 // never in the default subset and is reported against the same reference.
 using vkfuse::Precision;
 

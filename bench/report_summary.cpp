@@ -5,7 +5,7 @@
 namespace vkfuse::bench {
 namespace {
 
-// fp16 storage has no tolerance to meet (SPEC.md): its error is reported.
+// fp16 storage has no tolerance to meet (docs/spec.md): its error is reported.
 void print_fp16(std::FILE* out, const std::vector<CellResult>& results) {
     for (const auto& r : results)
         if (r.cell.precision == Precision::Fp16Storage && r.measured())

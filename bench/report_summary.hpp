@@ -1,4 +1,4 @@
-// The lines after the table: accuracy of the Vulkan cells against SPEC.md's
+// The lines after the table: accuracy of the Vulkan cells against docs/spec.md's
 // tolerance, and what batching sensors buys.
 #pragma once
 #include <cstdio>

@@ -38,7 +38,7 @@ int reflect101(int i, int n) {
     return i;
 }
 
-// Fusion rules (SPEC.md "Rules"), applied to the K values of one coefficient.
+// Fusion rules (docs/spec.md "Rules"), applied to the K values of one coefficient.
 const uint RULE_MAX_ABS = 0u;
 const uint RULE_MEAN = 1u;
 const uint RULE_MAX = 2u;

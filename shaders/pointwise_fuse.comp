@@ -29,7 +29,7 @@ layout(push_constant, std430) uniform Push {
 #define VKFUSE_WRITES_IMAGES
 #include "frames.glsl"
 
-// SPEC.md's s >= 1e-6, with the threshold the smallest float >= 1e-6
+// docs/spec.md's s >= 1e-6, with the threshold the smallest float >= 1e-6
 // (0x358637BE; the literal 1e-6 rounds below it, to 9.99999997e-7, which
 // would take the ratio for a sum that is below 1e-6). Float32 frames reach the
 // device scaled by a power of two per sensor (vk/magnitude.hpp), and so does

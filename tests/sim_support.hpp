@@ -12,7 +12,7 @@
 
 namespace vkfuse::test {
 
-// An 8-bit frame as SPEC.md maps it: v / 255.
+// An 8-bit frame as docs/spec.md maps it: v / 255.
 inline ImageD to_image(const Frame& f) {
     ImageD img(f.height, f.width, 3);
     for (std::size_t i = 0; i < f.pixels.size(); ++i) img.data[i] = f.pixels[i] / 255.0;

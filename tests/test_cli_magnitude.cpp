@@ -1,7 +1,7 @@
 // `--backend vulkan` on float32 .npy inputs far from [0, 1] (issue 11, items 9
 // and 10): what the user saw was a Laplacian fusion of all NaN at 1e38 and
 // metrics printing "sharpness": null, "contrast": 0, with exit status 0. The
-// Vulkan backend must print what the CPU backend prints, within SPEC.md's
+// Vulkan backend must print what the CPU backend prints, within docs/spec.md's
 // tolerance relative to the values. Needs a Vulkan device (lavapipe in CI);
 // the validation layer is on, and stderr must stay empty.
 #include <gtest/gtest.h>

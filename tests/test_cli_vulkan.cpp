@@ -1,5 +1,5 @@
 // `--backend vulkan` end to end: the GPU path must agree with the CPU path
-// (SPEC.md tolerances: fused 1e-5 absolute, metrics 1e-5 relative). Needs a
+// (docs/spec.md tolerances: fused 1e-5 absolute, metrics 1e-5 relative). Needs a
 // Vulkan device (lavapipe in CI). Runs with the validation layer on
 // (VKFUSE_VALIDATION=1): any message lands on stderr, which must stay empty.
 #include <gtest/gtest.h>

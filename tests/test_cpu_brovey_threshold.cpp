@@ -1,4 +1,4 @@
-// Brovey's dark-pixel threshold in the CPU reference (SPEC.md: with
+// Brovey's dark-pixel threshold in the CPU reference (docs/spec.md: with
 // p_k = max(I_k, 0) and s = sum_k p_k, I* = sum_k (p_k / s) I_k when
 // s >= 1e-6, else mean_k I_k). Each pixel below is one case; a negative third
 // frame makes the mean (about -0.083) far from the ratio (about s), so a pixel
@@ -19,7 +19,7 @@ constexpr double kNegative = -0.25;  // the third frame everywhere: p = 0, pulls
 
 struct Pixel {
     double i0, i1;  // the two positive frames: s = i0 + i1
-    bool ratio;     // SPEC: s >= 1e-6
+    bool ratio;     // docs/spec.md: s >= 1e-6
 };
 
 double ratio_of(const Pixel& p) {

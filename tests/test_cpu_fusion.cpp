@@ -1,4 +1,4 @@
-// fuse_reference() against SPEC.md computed in numpy/pywt/cv2
+// fuse_reference() against docs/spec.md computed in numpy/pywt/cv2
 // (tests/data/peers/fusion.bin), plus the invariants every method must keep.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Exact max-abs ties in the CPU reference (SPEC.md "Rules": ties go to the
+// Exact max-abs ties in the CPU reference (docs/spec.md "Rules": ties go to the
 // lowest frame index), through every pyramid and wavelet: the coefficients of
 // -A are exactly the negated coefficients of A, so fusing A with -A under
 // max-abs must give A back, and -A with A must give -A.

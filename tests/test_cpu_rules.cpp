@@ -1,4 +1,4 @@
-// The per-coefficient fusion rules (SPEC.md, "Rules").
+// The per-coefficient fusion rules (docs/spec.md, "Rules").
 #include <gtest/gtest.h>
 
 #include <vector>

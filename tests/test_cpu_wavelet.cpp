@@ -19,7 +19,7 @@ namespace {
 using core::Plane;
 using core::WaveletCoeffs;
 
-constexpr double kPeerTolerance = 1e-6;  // SPEC.md; the observed error is ~1e-15
+constexpr double kPeerTolerance = 1e-6;  // docs/spec.md; the observed error is ~1e-15
 
 const test::PeerFile& peers() {
     static const test::PeerFile file("wavelet_periodization.bin");

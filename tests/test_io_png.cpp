@@ -93,7 +93,7 @@ void write_test_png(const std::string& path, const PngSpec& p) {
     ASSERT_TRUE(ok);
 }
 
-// SPEC.md: a sample of b bits maps to v / (2^b - 1); palette entries are 8-bit colors.
+// docs/spec.md: a sample of b bits maps to v / (2^b - 1); palette entries are 8-bit colors.
 float expected(const PngSpec& p, int y, int x, int c) {
     if (p.color_type == PNG_COLOR_TYPE_PALETTE) {
         const png_color& e = p.palette[sample(p, y, x, 0)];

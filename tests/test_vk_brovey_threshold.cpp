@@ -1,4 +1,4 @@
-// Brovey's dark-pixel threshold on the GPU (SPEC.md: s >= 1e-6 takes the
+// Brovey's dark-pixel threshold on the GPU (docs/spec.md: s >= 1e-6 takes the
 // ratio sum_k (p_k / s) I_k, else the mean; p_k = max(I_k, 0)). The sums
 // below lie clearly on one side of 1e-6 in float32 as in double, plus the
 // float32 neighbours of 1e-6 and float(1e-6) itself (9.99999997e-7: below

@@ -1,5 +1,5 @@
 // Precision::Fp16Storage: the _fp16 kernels (float16 planes, float32
-// arithmetic) against the double reference. SPEC.md sets no tolerance for
+// arithmetic) against the double reference. docs/spec.md sets no tolerance for
 // reduced precision, so these bounds are what float16 storage gives with
 // margin, measured on lavapipe (below); they catch a kernel that stores the
 // wrong thing, not a rounding slightly worse than measured.

@@ -17,7 +17,7 @@
 namespace vkfuse::test {
 namespace {
 
-constexpr double kFusedTolerance = 1e-5;  // SPEC.md: Vulkan vs reference
+constexpr double kFusedTolerance = 1e-5;  // docs/spec.md: Vulkan vs reference
 
 // max-abs picks one frame's coefficient; where two frames' magnitudes differ by
 // less than float32 rounding (~1e-7) and their signs differ, float and double

@@ -1,6 +1,6 @@
 // The Vulkan path at every float32 magnitude (issue 11, items 9 and 10): for
 // finite inputs from subnormals up to FLT_MAX, every method, rule and metric
-// agrees with the double reference within SPEC.md's tolerance made relative to
+// agrees with the double reference within docs/spec.md's tolerance made relative to
 // the inputs' magnitude, or throws Error(Numeric); never NaN, Inf, a JSON null
 // or a wrong finite number. Small images (29 x 37) keep this file fast.
 #include <gtest/gtest.h>
@@ -22,7 +22,7 @@ namespace vkfuse::test {
 namespace {
 
 constexpr int kH = 29, kW = 37, kC = 3, kK = 3;
-constexpr double kTolerance = 1e-5;  // SPEC.md, for inputs in [0, 1]: here times the magnitude
+constexpr double kTolerance = 1e-5;  // docs/spec.md, for inputs in [0, 1]: here times the magnitude
 constexpr float kFltMax = std::numeric_limits<float>::max();
 constexpr double kDenormMin = std::numeric_limits<float>::denorm_min();
 
@@ -175,7 +175,7 @@ TEST_F(VulkanMagnitude, EveryMethodAtEveryScale) {
         for (const FusionSpec& spec : every_method()) {
             // At 1e-44 every input is one of eight multiples of 2^-149: nearly
             // every max-abs decision is an exact tie in float and a rounding
-            // in double, so either frame is right (SPEC.md) and only the
+            // in double, so either frame is right (docs/spec.md) and only the
             // tie-free rules can be compared there.
             if (a > 1e-43f) check_fusion(ctx(), spec, frames, false);
             check_fusion(ctx(), tie_free(spec), frames, true);
@@ -268,7 +268,7 @@ TEST_F(VulkanMagnitude, BackgroundOfAnotherMagnitude) {
     }
 }
 
-// Brovey's dark branch (s < 1e-6, SPEC.md) is an absolute threshold, the one
+// Brovey's dark branch (s < 1e-6, docs/spec.md) is an absolute threshold, the one
 // thing that does not scale. Pixels whose positive sum lies just below and
 // just above it must take the reference's branch while a huge (or tiny)
 // pixel elsewhere sets the image's scale. Checked per pixel, relative to that
@@ -352,7 +352,7 @@ TEST_F(VulkanMagnitude, ResultBeyondFloatRangeIsANumericError) {
     expect_metric(plan.metrics(0).contrast, want.contrast, "contrast");
 }
 
-// NaN or Inf in a frame is bad input (SPEC.md), as for the reference: the
+// NaN or Inf in a frame is bad input (docs/spec.md), as for the reference: the
 // plan names the frame instead of fusing it (a max-abs rule would silently
 // skip a NaN).
 TEST_F(VulkanMagnitude, NonFiniteFrameIsANumericError) {

@@ -1,4 +1,4 @@
-// Exact max-abs ties on the GPU (SPEC.md "Rules": ties go to the lowest frame
+// Exact max-abs ties on the GPU (docs/spec.md "Rules": ties go to the lowest frame
 // index). Every transform here is linear and float rounding is symmetric in
 // sign, so the coefficients of -A are exactly the negated coefficients of A:
 // every coefficient ties, and the rule alone decides which image comes back.

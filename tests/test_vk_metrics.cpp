@@ -13,7 +13,7 @@
 namespace vkfuse::test {
 namespace {
 
-constexpr double kRelTolerance = 1e-5;  // SPEC.md: each metric, relative
+constexpr double kRelTolerance = 1e-5;  // docs/spec.md: each metric, relative
 
 void expect_close(double gpu, double ref, const char* what) {
     if (ref == 0.0)

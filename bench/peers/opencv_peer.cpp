@@ -1,6 +1,6 @@
 // The pipelines a C++ user would write with OpenCV's own API, as the Python
 // peer (bench/peers/pipelines.py) writes them with numpy: Laplacian pyramid
-// fusion with pyrDown/pyrUp (SPEC.md's rules: detail max-abs, ties to the
+// fusion with pyrDown/pyrUp (docs/spec.md's rules: detail max-abs, ties to the
 // lowest frame; base mean), Brovey and channel-sum with OpenCV's per-element
 // operations, then the three metrics. vkfuse-bench runs it with the Python
 // peer's command line and reads the same one-line JSON answer:
@@ -94,7 +94,7 @@ cv::Mat as_mat(vkfuse::Image& img) {
     return cv::Mat(img.height, img.width, CV_32FC3, img.data.data());
 }
 
-// SPEC's Brovey threshold, s >= 1e-6 in exact arithmetic: the smallest float
+// The Brovey threshold of docs/spec.md, s >= 1e-6 in exact arithmetic: the smallest float
 // that is >= 1e-6 (float(1e-6) rounds below it).
 float brovey_threshold() {
     const float t = 1e-6f;

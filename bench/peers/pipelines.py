@@ -17,7 +17,7 @@ more up to --runs while they fit --max-seconds), prints one JSON object
 The frames stay float32, as a pipeline reading camera frames would keep them:
 the libraries then compute in float32, so the peer is as fast as it can be
 (the bench measures its error against vkfuse's double reference).
-SPEC.md's rules: base "mean", detail "max-abs" (ties to the lowest frame).
+docs/spec.md's rules: base "mean", detail "max-abs" (ties to the lowest frame).
 Exit status 2 with a one-line message on bad arguments or missing libraries.
 """
 import argparse

@@ -1,4 +1,4 @@
-// vkfuse/fusion.hpp - what to fuse and how (SPEC.md, "Fusion methods").
+// vkfuse/fusion.hpp - what to fuse and how (docs/spec.md, "Fusion methods").
 #pragma once
 #include <string>
 #include <string_view>

@@ -1,4 +1,4 @@
-// vkfuse/io.hpp - PNG and NPY images, with SPEC.md's value mapping.
+// vkfuse/io.hpp - PNG and NPY images, with docs/spec.md's value mapping.
 #pragma once
 #include <string>
 

@@ -1,4 +1,4 @@
-// vkfuse/metrics.hpp - the paper's image quality metrics (SPEC.md, "Metrics").
+// vkfuse/metrics.hpp - the paper's image quality metrics (docs/spec.md, "Metrics").
 #pragma once
 #include <optional>
 

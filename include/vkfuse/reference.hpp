@@ -1,5 +1,5 @@
 // vkfuse/reference.hpp - the CPU reference path: double precision, exactly
-// SPEC.md. It is the oracle every GPU result is tested against, and the
+// docs/spec.md. It is the oracle every GPU result is tested against, and the
 // backend `vkfuse --backend cpu` uses.
 #pragma once
 #include <span>

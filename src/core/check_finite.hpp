@@ -1,4 +1,4 @@
-// core/check_finite.hpp - the reference path refuses NaN and Inf (SPEC.md: they
+// core/check_finite.hpp - the reference path refuses NaN and Inf (docs/spec.md: they
 // are bad input), so rules like max-abs never have to order them.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// Laplacian-pyramid fusion with OpenCV-exact pyrDown/pyrUp (SPEC.md).
+// Laplacian-pyramid fusion with OpenCV-exact pyrDown/pyrUp (docs/spec.md).
 #include <vector>
 
 #include "core/fusion_methods.hpp"

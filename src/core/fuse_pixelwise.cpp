@@ -1,4 +1,4 @@
-// The per-pixel methods: channel-sum, Brovey and the mean (SPEC.md, "Fusion methods").
+// The per-pixel methods: channel-sum, Brovey and the mean (docs/spec.md, "Fusion methods").
 #include <vector>
 
 #include "core/compensated_sum.hpp"

@@ -14,7 +14,7 @@ std::string shape_text(const ImageD& f) {
     return std::to_string(f.height) + "x" + std::to_string(f.width) + "x" + std::to_string(f.channels);
 }
 
-// Frames are numbered from 1 in messages, as SPEC.md writes I_1 .. I_K.
+// Frames are numbered from 1 in messages, as docs/spec.md writes I_1 .. I_K.
 void check_frames(std::span<const ImageD> frames) {
     for (std::size_t k = 0; k < frames.size(); ++k) {
         const std::string name = "frame " + std::to_string(k + 1);

@@ -1,5 +1,5 @@
 // Wavelet fusion: decompose every frame, fuse the approximation with the base
-// rule and every detail band with the detail rule, invert (SPEC.md).
+// rule and every detail band with the detail rule, invert (docs/spec.md).
 #include <vector>
 
 #include "core/fusion_methods.hpp"

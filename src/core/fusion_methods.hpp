@@ -1,4 +1,4 @@
-// core/fusion_methods.hpp - the fusion methods of SPEC.md, one function each,
+// core/fusion_methods.hpp - the fusion methods of docs/spec.md, one function each,
 // on inputs fuse_reference() has already validated (one shape, right K and C).
 #pragma once
 #include <span>

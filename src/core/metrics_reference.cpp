@@ -1,5 +1,5 @@
 // metrics_reference(): the paper's sharpness, RMS contrast and background
-// difference exactly as SPEC.md defines them, in double precision with
+// difference exactly as docs/spec.md defines them, in double precision with
 // compensated sums.
 #include <cmath>
 #include <string>

@@ -1,4 +1,4 @@
-// core/rules.hpp - the fusion rules (SPEC.md, "Rules"): how K coefficients at
+// core/rules.hpp - the fusion rules (docs/spec.md, "Rules"): how K coefficients at
 // one position, one per frame, become one.
 #pragma once
 #include <span>

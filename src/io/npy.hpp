@@ -1,4 +1,4 @@
-// io/npy.hpp - NumPy .npy arrays as images (SPEC.md, "Images").
+// io/npy.hpp - NumPy .npy arrays as images (docs/spec.md, "Images").
 #pragma once
 #include <cstdio>
 #include <string>

@@ -8,7 +8,7 @@
 
 namespace vkfuse::io {
 
-// The element types vkfuse reads (SPEC.md, "Images").
+// The element types vkfuse reads (docs/spec.md, "Images").
 enum class NpyKind { F4, F8, U1, U2 };
 
 struct NpyHeader {

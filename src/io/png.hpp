@@ -1,4 +1,4 @@
-// io/png.hpp - PNG decoding and encoding with libpng (SPEC.md, "Images").
+// io/png.hpp - PNG decoding and encoding with libpng (docs/spec.md, "Images").
 #pragma once
 #include <cstdio>
 #include <string>

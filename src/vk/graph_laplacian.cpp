@@ -1,4 +1,4 @@
-// Laplacian pyramid fusion (SPEC.md): pyrDown chain per frame, level-by-level
+// Laplacian pyramid fusion (docs/spec.md): pyrDown chain per frame, level-by-level
 // fusion of G_l - pyrUp(G_{l+1}) (the Laplacian coefficient is formed inside
 // the fusion kernel, never stored), then collapse from the top, in place.
 #include <vector>

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Peer vectors for the CPU reference path: what PyWavelets, OpenCV and numpy
-(SPEC.md's formulas) compute, written to tests/data/peers/*.bin so the C++
+(docs/spec.md's formulas) compute, written to tests/data/peers/*.bin so the C++
 tests compare against them without Python at run time.
 
 Run with Debian's interpreter (it has python3-pywt, python3-opencv, numpy):
@@ -57,10 +57,10 @@ def size_key(a):
     return "x".join(str(s) for s in a.shape)
 
 
-# ---------------------------------------------------------------- rules, SPEC
+# ---------------------------------------------------------------- rules, docs/spec.md
 def combine(rule, stack):
     """A rule across axis 0 (the frames). argmax returns the first maximum, so
-    max-abs ties go to the lowest frame index, as SPEC.md requires."""
+    max-abs ties go to the lowest frame index, as docs/spec.md requires."""
     if rule == "max-abs":
         idx = np.argmax(np.abs(stack), axis=0)
         return np.take_along_axis(stack, idx[None], axis=0)[0]
@@ -151,7 +151,7 @@ def pyramid_vectors(rng):
     write("pyramid.bin", records)
 
 
-# -------------------------------------------------------------- fusion, SPEC
+# -------------------------------------------------------------- fusion, docs/spec.md
 def planes(frames):
     """(K, H, W, C) -> list over channels of (K, H, W)."""
     return [frames[..., c] for c in range(frames.shape[-1])]
@@ -237,10 +237,10 @@ def fusion_vectors(rng):
     write("fusion.bin", records)
 
 
-# ------------------------------------------------------------- metrics, SPEC
+# ------------------------------------------------------------- metrics, docs/spec.md
 def gradient(y, axis):
     if y.shape[axis] < 2:
-        return np.zeros_like(y)  # SPEC: 0 along an axis of length 1
+        return np.zeros_like(y)  # docs/spec.md: 0 along an axis of length 1
     return np.gradient(y, axis=axis)
 
 

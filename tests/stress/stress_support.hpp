@@ -56,7 +56,7 @@ FusionSpec method_spec(Method method, int levels = 0);
 FusionSpec wavelet_spec(Wavelet wavelet, WaveletMode mode, int levels);
 std::string describe(const FusionSpec& spec);
 // Brovey, channel-sum, Laplacian (default levels) and every wavelet in both
-// modes at 3 levels, each with SPEC.md's default rules (max-abs details).
+// modes at 3 levels, each with docs/spec.md's default rules (max-abs details).
 std::vector<FusionSpec> every_method();
 // Base mean, detail max: max-abs may pick a different frame than double where
 // two coefficients are equal in magnitude and opposite in sign up to rounding

@@ -16,7 +16,7 @@
 namespace vkfuse::test {
 namespace {
 
-constexpr double kRelTolerance = 1e-5;      // SPEC.md: each metric, relative
+constexpr double kRelTolerance = 1e-5;      // docs/spec.md: each metric, relative
 constexpr double kFlatTolerance = 1e-3;     // contrast of the nearly flat image
 
 std::string shape(const Image& img) {

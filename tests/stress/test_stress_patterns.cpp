@@ -22,7 +22,7 @@ namespace {
 constexpr int kH = 80, kW = 96, kC = 3, kK = 3;  // 80 x 96 carries 3 levels of bior4.4
 
 // Most GPUs, lavapipe included, flush float32 denormals (|x| < 2^-126) to
-// zero, and SPEC.md asks nothing finer of the float path. A handful of flushed
+// zero, and docs/spec.md asks nothing finer of the float path. A handful of flushed
 // intermediate terms can move a result by a few times 2^-126.
 constexpr double kFlushAllowance = 64 * double(std::numeric_limits<float>::min());
 
@@ -109,7 +109,7 @@ TEST_F(StressPatterns, GpuAgreesWithTheReference) {
             SCOPED_TRACE(p.name + " " + describe(spec));
             const GpuCycle gpu = gpu_cycle(ctx(), spec, frames, kK);
             const ImageD ref = fuse_reference(framesd, spec);
-            // SPEC.md's 1e-5 is for values in [0, 1]: relative to the largest value here.
+            // docs/spec.md's 1e-5 is for values in [0, 1]: relative to the largest value here.
             const double scale = max_abs(ref) > 0 ? max_abs(ref) : 1.0;
             const Mismatch fused = compare(gpu.fused[0], ref, 1e-5 * scale + kFlushAllowance);
             EXPECT_EQ(fused.over, 0u) << "worst " << fused.worst << " at scale " << scale;

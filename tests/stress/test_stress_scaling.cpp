@@ -24,7 +24,7 @@ constexpr int kH = 80, kW = 96, kC = 3, kK = 3;
 const float kPowersOfTwo[] = {0x1p-10f, 0x1p-5f, 1.0f, 0x1p5f, 0x1p10f};
 const float kOtherFactors[] = {1e-3f, 0.3f, 7.0f, 1e3f};
 
-// Brovey switches to the plain mean where s = sum max(I_k, 0) < 1e-6 (SPEC.md),
+// Brovey switches to the plain mean where s = sum max(I_k, 0) < 1e-6 (docs/spec.md),
 // a threshold that does not scale: the one documented exception. Frames kept
 // in [0.25, 1] have s >= 0.75, so even a = 2^-10 keeps every pixel above it.
 std::vector<Image> frames() {
@@ -84,7 +84,7 @@ TEST_F(StressScaling, OtherFactorsScaleWithinTolerance) {
             SCOPED_TRACE(describe(spec) + " a=" + std::to_string(a));
             const std::vector<Image> scaled_frames = scaled_all(base, a);
             const GpuCycle gpu = gpu_cycle(ctx(), spec, scaled_frames, kK);
-            // Relative to the largest output: SPEC.md's 1e-5 on a [0, 1] image, scaled.
+            // Relative to the largest output: docs/spec.md's 1e-5 on a [0, 1] image, scaled.
             const double gpu_err = max_abs_diff(gpu.fused[0], scaled_d(convert<double>(gpu1.fused[0]), a)) / (a * peak);
             EXPECT_LE(gpu_err, 1e-5) << "gpu fused";
             worst_gpu = std::max(worst_gpu, gpu_err);

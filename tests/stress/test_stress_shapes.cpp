@@ -16,7 +16,7 @@
 namespace vkfuse::test {
 namespace {
 
-constexpr double kTolerance = 1e-5;  // SPEC.md: Vulkan vs reference, inputs in [0, 1]
+constexpr double kTolerance = 1e-5;  // docs/spec.md: Vulkan vs reference, inputs in [0, 1]
 
 // max-abs near-ties (README "Accuracy") put a few samples beyond the
 // tolerance. For wavelets up to 1 Mpixel each departure must be explained by
@@ -135,7 +135,7 @@ TEST_F(StressShapes, DegenerateAndPrimeSizes) {
     }
 }
 
-// The largest size SPEC.md names, single channel to keep the CPU oracle short.
+// The largest size docs/spec.md names, single channel to keep the CPU oracle short.
 TEST_F(StressShapes, Largest4096Laplacian) { check(ctx(), method_spec(Method::Laplacian), 4096, 4096, 1, 2, 1, 800); }
 
 TEST_F(StressShapes, Largest4096Wavelet) {
