@@ -127,7 +127,7 @@ PipelineCost wavelet(double K, int L, Level l0, double frame_scale, Wavelet w) {
 PipelineCost pointwise(double K, Method m, Level l0, double frame_scale) {
     const double n = l0.samples();
     const double read = m == Method::ChannelSum ? K * n / kChannels : K * n;  // one channel of each frame
-    const double flops_per_frame = m == Method::Brovey ? 4 : m == Method::Mean ? 1 : 0;
+    const double flops_per_frame = m == Method::Brovey ? 4 : 0;
     PipelineCost p;
     p.accesses = frame_scale * read + n;
     p.flops = flops_per_frame * K * n;

@@ -38,7 +38,6 @@ TEST(CpuSpec, NamesRoundTrip) {
         EXPECT_EQ(parse_wavelet_mode(to_string(m)), m);
     for (Rule r : {Rule::MaxAbs, Rule::Mean, Rule::Max, Rule::Min}) EXPECT_EQ(parse_rule(to_string(r)), r);
     EXPECT_EQ(to_string(Method::ChannelSum), "channel-sum");
-    EXPECT_EQ(to_string(Method::Passthrough), "passthrough");
     EXPECT_EQ(to_string(Wavelet::Bior22), "bior2.2");
     EXPECT_EQ(to_string(Rule::MaxAbs), "max-abs");
 }
@@ -91,10 +90,6 @@ TEST(CpuSpec, FrameAndChannelCounts) {
     EXPECT_EQ(invalid_argument_message([&] { validate(cs, 4, 4, 1, 3); }),
               "--method channel-sum: needs 3-channel (RGB) frames, got 1 channel(s)");
     EXPECT_EQ(invalid_argument_message([&] { validate(cs, 4, 4, 3, 3); }), "");
-    FusionSpec pt;
-    pt.method = Method::Passthrough;
-    EXPECT_NE(invalid_argument_message([&] { validate(pt, 4, 4, 3, 2); }), "");
-    EXPECT_EQ(invalid_argument_message([&] { validate(pt, 4, 4, 3, 1); }), "");
     FusionSpec lap;
     lap.method = Method::Laplacian;
     lap.levels = 9;  // any size carries any level count: pyrDown of 1 pixel is 1 pixel

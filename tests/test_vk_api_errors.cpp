@@ -60,8 +60,8 @@ std::vector<Misuse> bad_configs() {
          "--levels 33", ErrorKind::InvalidArgument, "at most 32 levels"},
         {"channel_sum_gray", make(config(Method::ChannelSum, 8, 8, 1, 3)), "--method channel-sum",
          ErrorKind::InvalidArgument, "needs 3-channel (RGB) frames"},
-        {"passthrough_two_frames", make(config(Method::Passthrough, 8, 8, 1, 2)), "--method passthrough",
-         ErrorKind::InvalidArgument, "takes exactly 1 frame, got 2"},
+        {"unfused_two_frames", make(with(config(Method::Brovey, 8, 8, 1, 2), [](auto& c) { c.fuse = false; })),
+         "plan", ErrorKind::InvalidArgument, "an unfused plan (fuse = false) scores 1 frame per sensor, got 2"},
         {"background_without_metrics",
          make(with(ok, [](auto& c) {
              c.want_metrics = false;
@@ -120,7 +120,8 @@ TEST_F(VulkanApiErrors, BadRunsAndReadsLeaveThePlanUsable) {
 }
 
 TEST_F(VulkanApiErrors, ResultsThatWereNotAskedForAreErrors) {
-    PlanConfig cfg = config(Method::Passthrough, 4, 4, 1, 1);
+    PlanConfig cfg = config(Method::Brovey, 4, 4, 1, 1);
+    cfg.fuse = false;
     cfg.want_fused = false;
     cfg.want_metrics = false;
     Plan plan(ctx(), cfg);

@@ -15,6 +15,7 @@
 #include "expect_error.hpp"
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
+#include "vkfuse/background.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/reference.hpp"
 
@@ -214,7 +215,7 @@ TEST_F(VulkanMagnitude, SensorsOfOnePlanScaleIndependently) {
 
 Metrics gpu_metrics(Context& ctx, const Image& image, const Image* background) {
     PlanConfig cfg;
-    cfg.fusion.method = Method::Passthrough;
+    cfg.fuse = false;
     cfg.height = image.height;
     cfg.width = image.width;
     cfg.channels = image.channels;
@@ -372,12 +373,20 @@ TEST_F(VulkanMagnitude, NonFiniteFrameIsANumericError) {
     expect_error([&] { plan.run(views); }, "frame 1 of sensor 0", ErrorKind::Numeric, "-Inf at row 3, column 5");
 }
 
-// The background model's mean (Method::Mean, F32 frames) at the extremes.
+// The background model's mean (a plan kind of its own, F32 frames) at the extremes.
 TEST_F(VulkanMagnitude, MeanAtTheExtremes) {
     for (float a : {1e-44f, 3e38f, kFltMax}) {
         SCOPED_TRACE("scale " + label(a));
         const std::vector<Image> frames = scene(a, 97);
-        check_fusion(ctx(), method_spec(Method::Mean), frames, true);
+        std::vector<FrameView> views;
+        for (const Image& f : frames) views.push_back(FrameView::of(f));
+        BackgroundModel model(ctx(), kH, kW, kC, int(frames.size()), PixelType::F32);
+        const Image gpu = model.mean(views);
+        const ImageD ref = background_mean_reference(views);
+        const double tolerance = kTolerance * magnitude(frames) + kDenormMin;
+        std::size_t over = 0;
+        for (std::size_t i = 0; i < ref.data.size(); ++i) over += !(std::abs(double(gpu.data[i]) - ref.data[i]) <= tolerance);
+        EXPECT_EQ(over, 0u) << "samples beyond " << tolerance;
     }
 }
 

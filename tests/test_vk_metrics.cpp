@@ -23,9 +23,8 @@ void expect_close(double gpu, double ref, const char* what) {
 }
 
 Metrics gpu_metrics(Context& ctx, const ImageD& img, const ImageD* bg) {
-    FusionSpec s;
-    s.method = Method::Passthrough;
-    PlanConfig cfg{s, img.height, img.width, img.channels, 1, 1};
+    PlanConfig cfg{FusionSpec{}, img.height, img.width, img.channels, 1, 1};
+    cfg.fuse = false;
     cfg.want_fused = false;
     cfg.background_diff = bg != nullptr;
     Plan plan(ctx, cfg);
@@ -82,10 +81,9 @@ TEST_F(VulkanMetrics, ConstantImageHasNoSharpnessNorContrast) {
 }
 
 TEST_F(VulkanMetrics, EverySensorOfABatchIsScoredOnItsOwn) {
-    FusionSpec s;
-    s.method = Method::Passthrough;
     const int S = 4;
-    PlanConfig cfg{s, 50, 70, 3, 1, S};
+    PlanConfig cfg{FusionSpec{}, 50, 70, 3, 1, S};
+    cfg.fuse = false;
     cfg.want_fused = true;
     std::vector<ImageD> frames;
     std::vector<Image> f32;

@@ -47,7 +47,7 @@ std::vector<Metrics> metrics_on_cpu(const std::vector<Input>& inputs, const Inpu
 
 PlanConfig metrics_plan(const Image& shape, bool background_diff) {
     PlanConfig config;
-    config.fusion.method = Method::Passthrough;
+    config.fuse = false;
     config.height = shape.height;
     config.width = shape.width;
     config.channels = shape.channels;

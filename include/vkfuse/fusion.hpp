@@ -10,8 +10,6 @@ enum class Method {
     Brovey,       // ratio-weighted sum across frames
     Laplacian,    // OpenCV-exact Laplacian pyramid, default 4 levels
     Wavelet,      // separable 2-D DWT, default 3 levels of bior4.4
-    Passthrough,  // K = 1, the frame itself: scoring single frames (vkfuse metrics)
-    Mean,         // per-pixel mean of the K frames: the background model (internal)
 };
 
 enum class Wavelet { Haar, Db2, Bior22, Bior44 };

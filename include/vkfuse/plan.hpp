@@ -29,7 +29,7 @@ enum class Precision { Fp32, Fp16Storage };
 std::string_view to_string(Precision);
 
 struct PlanConfig {
-    FusionSpec fusion;
+    FusionSpec fusion;      // ignored when fuse is false
     int height = 0;
     int width = 0;
     int channels = 3;       // 1 or 3
@@ -41,6 +41,9 @@ struct PlanConfig {
     bool background_diff = false;  // also the difference with each sensor's background
     bool profile = false;       // per-kernel GPU timestamps (Plan::profile)
     Precision precision = Precision::Fp32;
+    // false: nothing is fused; each sensor's one frame (frames = 1) is read
+    // back as it is and scored (what `vkfuse metrics` does).
+    bool fuse = true;
 };
 
 // Time one kernel (or a group of dispatches) took on the device in the last run.
@@ -95,6 +98,7 @@ public:
     struct Impl;
 
 private:
+    explicit Plan(std::unique_ptr<Impl> impl);  // the library's internal plan kinds
     std::unique_ptr<Impl> impl_;
 };
 

@@ -4,6 +4,7 @@
 
 #include "core/check_finite.hpp"
 #include "core/fusion_methods.hpp"
+#include "core/validate_shape.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/reference.hpp"
 
@@ -14,8 +15,9 @@ std::string shape_text(const ImageD& f) {
     return std::to_string(f.height) + "x" + std::to_string(f.width) + "x" + std::to_string(f.channels);
 }
 
-// Frames are numbered from 1 in messages, as docs/spec.md writes I_1 .. I_K.
-void check_frames(std::span<const ImageD> frames) {
+}  // namespace
+
+void core::check_frames(std::span<const ImageD> frames) {
     for (std::size_t k = 0; k < frames.size(); ++k) {
         const std::string name = "frame " + std::to_string(k + 1);
         if (!frames[k].same_shape(frames[0]) || frames[k].data.size() != frames[0].pixels() * frames[0].channels)
@@ -24,6 +26,8 @@ void check_frames(std::span<const ImageD> frames) {
         core::require_finite(frames[k], name);
     }
 }
+
+namespace {
 
 // Runs a single-plane method on every channel of every frame.
 template <class PlaneFusion>
@@ -42,11 +46,9 @@ ImageD per_channel(std::span<const ImageD> frames, PlaneFusion fuse) {
 ImageD fuse_reference(std::span<const ImageD> frames, const FusionSpec& spec) {
     if (frames.empty()) validate(spec, 1, 1, 1, 0);  // throws the frame-count message
     validate(spec, frames[0].height, frames[0].width, frames[0].channels, int(frames.size()));
-    check_frames(frames);
+    core::check_frames(frames);
     switch (spec.method) {
-        case Method::Passthrough: return frames[0];
         case Method::ChannelSum: return core::fuse_channel_sum(frames);
-        case Method::Mean: return core::fuse_mean(frames);
         case Method::Brovey: return core::fuse_brovey(frames);
         case Method::Laplacian:
             return per_channel(frames, [&](std::span<const core::Plane> p) {

@@ -67,14 +67,7 @@ int FusionSpec::effective_levels() const {
     }
 }
 
-std::string_view to_string(Method m) {
-    // Passthrough (vkfuse metrics scores single frames) and Mean (the background
-    // model) are internal, so the CLI never parses them, but they still have
-    // names for messages.
-    if (m == Method::Passthrough) return "passthrough";
-    if (m == Method::Mean) return "mean";
-    return name_of(kPublicMethods, m);
-}
+std::string_view to_string(Method m) { return name_of(kPublicMethods, m); }
 std::string_view to_string(Wavelet w) { return name_of(kWavelets, w); }
 std::string_view to_string(WaveletMode m) { return name_of(kModes, m); }
 std::string_view to_string(Rule r) { return name_of(kRules, r); }

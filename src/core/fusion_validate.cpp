@@ -2,6 +2,7 @@
 // one-line message that names the offending option (include/vkfuse/fusion.hpp).
 #include <string>
 
+#include "core/validate_shape.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/fusion.hpp"
 
@@ -29,8 +30,6 @@ void check_frame_count(const FusionSpec& spec, int channels, int frames) {
         if (channels != 3)
             fail(method + ": needs 3-channel (RGB) frames, got " + std::to_string(channels) + " channel(s)");
     }
-    if (spec.method == Method::Passthrough && frames != 1)
-        fail(method + ": takes exactly 1 frame, got " + std::to_string(frames));
 }
 
 void check_wavelet_levels(const FusionSpec& spec, int height, int width) {
@@ -49,11 +48,19 @@ void check_wavelet_levels(const FusionSpec& spec, int height, int width) {
 
 }  // namespace
 
-void validate(const FusionSpec& spec, int height, int width, int channels, int frames) {
+namespace core {
+
+void validate_shape(int height, int width, int channels, int frames) {
     if (height < 1 || width < 1) fail("image size " + size_text(height, width) + ": both sides must be >= 1");
     if (channels != 1 && channels != 3)
         fail("image channels " + std::to_string(channels) + ": must be 1 (gray) or 3 (RGB)");
     if (frames < 1) fail("frames: need at least 1, got " + std::to_string(frames));
+}
+
+}  // namespace core
+
+void validate(const FusionSpec& spec, int height, int width, int channels, int frames) {
+    core::validate_shape(height, width, channels, frames);
     if (spec.levels < 0) fail("--levels " + std::to_string(spec.levels) + ": must be >= 0 (0 = method default)");
     check_frame_count(spec, channels, frames);
     if (spec.method == Method::Wavelet) check_wavelet_levels(spec, height, width);

@@ -1,5 +1,8 @@
-// BackgroundModel: the mean of N frames as a Plan with the internal Mean method.
+// BackgroundModel: the mean of N frames as a Plan of the internal BackgroundMean kind.
+#include "core/fusion_methods.hpp"
+#include "core/validate_shape.hpp"
 #include "rig/engine.hpp"
+#include "vk/plan_impl.hpp"
 #include "vkfuse/background.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/plan.hpp"
@@ -13,7 +16,6 @@ struct BackgroundModel::Impl {
 
 BackgroundModel::BackgroundModel(Context& context, int height, int width, int channels, int frames, PixelType input) {
     PlanConfig cfg;
-    cfg.fusion.method = Method::Mean;
     cfg.height = height;
     cfg.width = width;
     cfg.channels = channels;
@@ -22,7 +24,7 @@ BackgroundModel::BackgroundModel(Context& context, int height, int width, int ch
     cfg.input = input;
     cfg.want_fused = true;
     cfg.want_metrics = false;
-    impl_ = std::make_unique<Impl>(Impl{Plan(context, cfg)});
+    impl_ = std::make_unique<Impl>(Impl{Plan::Impl::make(context, cfg, vk::PlanKind::BackgroundMean)});
 }
 
 BackgroundModel::~BackgroundModel() = default;
@@ -44,9 +46,9 @@ ImageD background_mean_reference(std::span<const FrameView> frames) {
     std::vector<ImageD> images;
     images.reserve(frames.size());
     for (const FrameView& v : frames) images.push_back(rig::to_double(v));
-    FusionSpec mean;
-    mean.method = Method::Mean;
-    return fuse_reference(images, mean);
+    core::validate_shape(images[0].height, images[0].width, images[0].channels, int(images.size()));
+    core::check_frames(images);
+    return core::fuse_mean(images);
 }
 
 }  // namespace vkfuse

@@ -9,8 +9,9 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
     const VkDeviceAddress out = g.planes(std::uint64_t(g.planes_out()) * pixels);
     const bool quads = pixels % 4 == 0;
     const Grid grid = grid_1d(quads ? pixels / 4 : pixels, 256);
+    const bool mean = g.kind == PlanKind::BackgroundMean;
     const Method method = g.cfg.fusion.method;
-    const std::uint32_t kernel_method = method == Method::Mean ? 2 : method == Method::ChannelSum ? 1 : 0;
+    const std::uint32_t kernel_method = mean ? 2 : method == Method::ChannelSum ? 1 : 0;
     const DeviceSpan planes = g.span(out), img = image ? *image : planes;
     g.rec.dispatch("pointwise_fuse",
                    {frames, frames, planes, planes, img, img,
@@ -26,7 +27,7 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
                        .u32(g.cfg.want_metrics)
                        .u32(image.has_value()),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
-    g.rec.mark(method == Method::Mean ? "mean" : method == Method::ChannelSum ? "channel_sum" : "brovey");
+    g.rec.mark(mean ? "mean" : method == Method::ChannelSum ? "channel_sum" : "brovey");
     return out;
 }
 

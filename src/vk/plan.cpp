@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/validate_shape.hpp"
 #include "vk/magnitude.hpp"
 #include "vk/plan_impl.hpp"
 #include "vkfuse/error.hpp"
@@ -13,8 +14,15 @@
 namespace vkfuse {
 namespace {
 
-void validate_config(const PlanConfig& c) {
-    validate(c.fusion, c.height, c.width, c.channels, c.frames);
+void validate_config(const PlanConfig& c, vk::PlanKind kind) {
+    if (kind == vk::PlanKind::Fuse) {
+        validate(c.fusion, c.height, c.width, c.channels, c.frames);
+    } else {
+        core::validate_shape(c.height, c.width, c.channels, c.frames);
+        if (kind == vk::PlanKind::Score && c.frames != 1)
+            throw Error(ErrorKind::InvalidArgument, "plan: an unfused plan (fuse = false) scores 1 frame per sensor, got " +
+                                                        std::to_string(c.frames));
+    }
     if (c.sensors < 1) throw Error(ErrorKind::InvalidArgument, "plan: sensors must be >= 1");
     if (c.background_diff && !c.want_metrics)
         throw Error(ErrorKind::InvalidArgument, "plan: background_diff needs want_metrics");
@@ -42,8 +50,9 @@ std::string kernel_variant(Precision p) { return p == Precision::Fp16Storage ? "
 
 std::string_view to_string(Precision p) { return p == Precision::Fp16Storage ? "fp16" : "fp32"; }
 
-Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context), cfg(config) {
-    validate_config(cfg);
+Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind plan_kind)
+    : ctx(context), cfg(config), kind(plan_kind) {
+    validate_config(cfg, kind);
     check_precision(cfg, ctx.info);
     const std::size_t frame_bytes = std::size_t(cfg.height) * cfg.width * cfg.channels * pixel_bytes(cfg.input);
     const std::size_t plane_floats = std::size_t(cfg.height) * cfg.width;
@@ -51,7 +60,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config) : ctx(context
     upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
     if (cfg.background_diff) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
     const std::size_t S = std::size_t(cfg.sensors);
-    if (cfg.input == PixelType::F32 && cfg.fusion.method == Method::Brovey) {
+    if (cfg.input == PixelType::F32 && brovey()) {
         thresholds = vk::Buffer(ctx, S * 4, vk::MemoryUse::Upload);
         std::fill_n(static_cast<float*>(thresholds.mapped()), S, vk::brovey_threshold(0));
     }
@@ -82,21 +91,23 @@ void Plan::Impl::record() {
     addressed = ctx.device_addresses_only || vk::needs_device_addresses(cfg, ctx.properties.limits);
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed);
-    vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
+    vk::GraphBuilder g{ctx, cfg, kind, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
     const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
     const vk::DeviceSpan frames = upload.span(), image = readback.span().sub(0, partials_offset);
     const Method method = cfg.fusion.method;
     VkDeviceAddress fused_planes = 0;
-    const bool pointwise = method == Method::ChannelSum || method == Method::Brovey || method == Method::Mean;
+    const bool fuses = kind == vk::PlanKind::Fuse;
+    const bool pointwise = kind == vk::PlanKind::BackgroundMean ||
+                           (fuses && (method == Method::ChannelSum || method == Method::Brovey));
     if (pointwise) {
         fused_planes = record_pointwise(g, frames, cfg.want_fused ? std::optional(image) : std::nullopt);
     } else {
         vk::FrameSource input(g, frames);
-        fused_planes = method == Method::Laplacian ? record_laplacian(g, input)
-                       : method == Method::Wavelet ? record_wavelet(g, input)
-                                                   : input.planes();  // passthrough: the frame is its own result
+        fused_planes = !fuses                      ? input.planes()  // scoring: the frame is its own result
+                       : method == Method::Laplacian ? record_laplacian(g, input)
+                                                     : record_wavelet(g, input);
         if (cfg.want_fused && !vk::metrics_write_image(cfg)) {
             const vk::DeviceSpan fused = g.span(fused_planes);
             rec.dispatch("pack", {fused, fused, image, image},
@@ -170,7 +181,12 @@ void check_device_results(const PlanConfig& c, int sensor, std::span<const float
 
 }  // namespace
 
-Plan::Plan(Context& context, const PlanConfig& config) : impl_(std::make_unique<Impl>(context.impl(), config)) {}
+Plan::Plan(Context& context, const PlanConfig& config)
+    : impl_(std::make_unique<Impl>(context.impl(), config, config.fuse ? vk::PlanKind::Fuse : vk::PlanKind::Score)) {}
+Plan::Plan(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Plan Plan::Impl::make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind) {
+    return Plan(std::make_unique<Impl>(context.impl(), config, plan_kind));
+}
 Plan::~Plan() = default;
 Plan::Plan(Plan&&) noexcept = default;
 Plan& Plan::operator=(Plan&&) noexcept = default;
@@ -243,7 +259,7 @@ void upload_f32(Plan::Impl& im, std::span<const FrameView> frames) {
                                                         ": " + non_finite_at(c, vk::load(frames[s * K + k].data, i), i));
             }
         const std::uint32_t background = im.background_max.empty() ? 0 : im.background_max[s];
-        const std::optional<int> e = vk::choose_exponent(largest, background, c.fusion.method == Method::Brovey);
+        const std::optional<int> e = vk::choose_exponent(largest, background, im.brovey());
         if (!e) {
             std::uint32_t exact = 0;
             for (std::size_t k = 0; k < K; ++k) exact = std::max(exact, vk::max_abs(frames[s * K + k].data, n));

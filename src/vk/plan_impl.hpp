@@ -11,10 +11,19 @@
 
 namespace vkfuse::vk {
 
+// What a plan computes for each sensor. Only Fuse runs a fusion method
+// (PlanConfig::fusion); the others are kinds of plan of their own.
+enum class PlanKind {
+    Fuse,            // the K frames fused, then the metrics of the result
+    Score,           // the one frame as it is, and its metrics (PlanConfig::fuse false)
+    BackgroundMean,  // the per-pixel mean of the K frames (BackgroundModel)
+};
+
 // What a graph builder works with while a plan is being recorded.
 struct GraphBuilder {
     Context::Impl& ctx;
     const PlanConfig& cfg;
+    PlanKind kind;
     Recorder& rec;
     std::vector<Buffer>& buffers;  // owned by the plan; every intermediate lives here
     // Brovey in a float32-input plan: per sensor, the dark threshold in that
@@ -111,6 +120,7 @@ namespace vkfuse {
 struct Plan::Impl {
     Context::Impl& ctx;
     PlanConfig cfg;
+    vk::PlanKind kind;
     vk::Buffer upload;      // frames as given, host-written each run
     vk::Buffer background;  // planar float backgrounds, host-written by set_background
     vk::Buffer readback;    // fused HWC images, then the metric partials
@@ -138,7 +148,11 @@ struct Plan::Impl {
     std::vector<std::uint32_t> background_max;
     std::vector<std::optional<int>> background_exponent;
 
-    Impl(Context::Impl& context, const PlanConfig& config);
+    Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind plan_kind);
+    // A plan of an internal kind (BackgroundMean): what Plan's public
+    // constructor cannot make.
+    static Plan make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind);
+    bool brovey() const { return kind == vk::PlanKind::Fuse && cfg.fusion.method == Method::Brovey; }
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 

@@ -55,7 +55,7 @@ GpuCycle gpu_cycle(Context& ctx, const FusionSpec& spec, const std::vector<Image
 
 Metrics gpu_metrics(Context& ctx, const Image& image, const Image* background) {
     PlanConfig cfg;
-    cfg.fusion = method_spec(Method::Passthrough);
+    cfg.fuse = false;
     cfg.height = image.height;
     cfg.width = image.width;
     cfg.channels = image.channels;

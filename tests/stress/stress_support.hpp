@@ -31,7 +31,7 @@ struct GpuCycle {
 };
 GpuCycle gpu_cycle(Context& ctx, const FusionSpec& spec, const std::vector<Image>& frames, int frames_per_sensor,
                    bool want_metrics = true);
-// Metrics of one image on the GPU (Method::Passthrough).
+// Metrics of one image on the GPU (an unfused plan: PlanConfig::fuse false).
 Metrics gpu_metrics(Context& ctx, const Image& image, const Image* background = nullptr);
 
 // Index of the first NaN or Inf, or -1 when every sample is finite.
