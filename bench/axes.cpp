@@ -3,6 +3,7 @@
 #include <cctype>
 #include <charconv>
 
+#include "core/method_table.hpp"
 #include "usage_error.hpp"
 
 namespace vkfuse::bench {
@@ -35,7 +36,7 @@ std::string_view to_string(Backend b) { return b == Backend::Cpu ? "cpu" : "vulk
 
 std::string label(const MethodVariant& m) {
     std::string out(vkfuse::to_string(m.method));
-    if (m.method == Method::Wavelet) out += "/" + std::string(vkfuse::to_string(m.wavelet));
+    if (core::method_info(m.method).uses_wavelet) out += "/" + std::string(vkfuse::to_string(m.wavelet));
     return out;
 }
 
@@ -77,10 +78,14 @@ Size parse_size(std::string_view option, std::string_view text) {
 }
 
 std::vector<MethodVariant> all_method_variants() {
-    std::vector<MethodVariant> out{{Method::ChannelSum, Wavelet::Bior44},
-                                   {Method::Brovey, Wavelet::Bior44},
-                                   {Method::Laplacian, Wavelet::Bior44}};
-    for (Wavelet w : {Wavelet::Haar, Wavelet::Db2, Wavelet::Bior22, Wavelet::Bior44}) out.push_back({Method::Wavelet, w});
+    std::vector<MethodVariant> out;
+    for (const core::MethodInfo& m : core::method_table()) {
+        if (!m.uses_wavelet) {
+            out.push_back({m.method, Wavelet::Bior44});
+            continue;
+        }
+        for (Wavelet w : {Wavelet::Haar, Wavelet::Db2, Wavelet::Bior22, Wavelet::Bior44}) out.push_back({m.method, w});
+    }
     return out;
 }
 

@@ -1,6 +1,10 @@
 #include "floor_model.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "core/wavelet.hpp"
+#include "vk/method_recorders.hpp"
 
 namespace vkfuse::bench {
 namespace {
@@ -57,8 +61,9 @@ namespace {
 //  - wavelet: each output takes the nonzero taps of its filter (bior4.4: 9
 //    and 7 in analysis, 7 and 9 in synthesis, so 8 on average); vkfuse's
 //    compensated dot products (its feedback-drift bound) are not counted;
-//  - a fusion rule kRuleFlops per coefficient and frame; brovey ~4 per sample
-//    and frame (clamp, sum, weight, weighted sum), the mean 1, channel-sum 0;
+//  - a fusion rule kRuleFlops per coefficient and frame; a pointwise method
+//    its Vulkan row's flops per frame sample (brovey 4: clamp, sum, weight,
+//    weighted sum; channel-sum 0);
 //  - metrics kMetricFlops per pixel: luma (3 multiply-adds), the gradient (2
 //    differences, 2 halvings), its magnitude (2 products, a sum, a root), |I - B|
 //    on 3 channels (difference, abs, sum each), the moments' update (~6).
@@ -124,13 +129,13 @@ PipelineCost wavelet(double K, int L, Level l0, double frame_scale, Wavelet w) {
     return p;
 }
 
-PipelineCost pointwise(double K, Method m, Level l0, double frame_scale) {
+// One pass from the frames to the image, reading the fraction of each frame
+// and doing the arithmetic per frame sample the method's row gives.
+PipelineCost pointwise(double K, const vk::MethodRecorder& m, Level l0, double frame_scale) {
     const double n = l0.samples();
-    const double read = m == Method::ChannelSum ? K * n / kChannels : K * n;  // one channel of each frame
-    const double flops_per_frame = m == Method::Brovey ? 4 : 0;
     PipelineCost p;
-    p.accesses = frame_scale * read + n;
-    p.flops = flops_per_frame * K * n;
+    p.accesses = frame_scale * m.read_fraction * K * n + n;
+    p.flops = m.flops_per_frame_sample * K * n;
     p.dispatches = 1;
     return p;
 }
@@ -141,11 +146,15 @@ PipelineCost ideal_pipeline(const Cell& c, bool eight_bit_input) {
     const Level l0{double(c.size.height), double(c.size.width)};
     const double K = c.frames, frame_scale = eight_bit_input ? 0.25 : 1.0;
     PipelineCost p;
-    switch (c.method.method) {
-        case Method::Laplacian: p = laplacian(K, c.levels, l0, frame_scale); break;
-        case Method::Wavelet: p = wavelet(K, c.levels, l0, frame_scale, c.method.wavelet); break;
-        default: p = pointwise(K, c.method.method, l0, frame_scale); break;  // channel-sum, brovey, mean
-    }
+    const vk::MethodRecorder& m = vk::method_recorder(c.method.method);
+    if (m.shape == vk::GraphShape::Pointwise)
+        p = pointwise(K, m, l0, frame_scale);
+    else if (c.method.method == Method::Laplacian)
+        p = laplacian(K, c.levels, l0, frame_scale);
+    else if (c.method.method == Method::Wavelet)
+        p = wavelet(K, c.levels, l0, frame_scale, c.method.wavelet);
+    else  // a multi-scale method needs its ideal pass chain here
+        throw std::logic_error("floor model: no ideal pipeline for " + std::string(to_string(c.method.method)));
     // The metric pass over the read-back image, against the background.
     p.accesses += 2 * l0.samples();
     p.flops += kMetricFlops * l0.h * l0.w;

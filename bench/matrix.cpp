@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <tuple>
 
+#include "core/method_table.hpp"
 #include "memory.hpp"
 #include "usage_error.hpp"
 #include "vkfuse/error.hpp"
@@ -106,7 +107,7 @@ std::vector<Slice> filtered_slices(const Options& o) {
 }
 
 std::vector<int> level_counts(const Options& o, Method m) {
-    if (m != Method::Laplacian && m != Method::Wavelet) return {0};
+    if (core::method_info(m).default_levels == 0) return {0};
     if (!o.levels.empty()) return o.levels;
     FusionSpec spec;
     spec.method = m;
@@ -139,7 +140,8 @@ void add_slice(const Options& o, const Slice& s, double budget, std::vector<Cell
                     for (Size size : s.sizes)
                         for (int k : s.frames)
                             for (int sensors : s.sensors) {
-                                if (m.method == Method::ChannelSum && k != 3) continue;  // defined for K = 3 only
+                                const int exact_k = core::method_info(m.method).exact_frames;
+                                if (exact_k != 0 && k != exact_k) continue;  // channel-sum: K = 3 only
                                 if (b == Backend::Cpu && p != Precision::Fp32) continue;  // the reference is double
                                 Cell c{m, levels, b, p, size, k, sensors, ""};
                                 c.skip = skip_reason(c, budget);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "inputs.hpp"
+#include "vk/method_recorders.hpp"
 
 namespace vkfuse::bench {
 namespace {
@@ -13,22 +14,6 @@ namespace {
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 constexpr double kProcessBytes = 0.25 * kGiB;  // the process itself: Vulkan driver, LLVM (lavapipe), Python peer
 
-// Device floats per input float and per output float beyond upload and input
-// planes, from the graph builders in src/vk: the wavelet keeps every level's
-// coefficient blocks for all frames plus a scratch plane set and every level's
-// fused blocks; the Laplacian a Gaussian pyramid (1/3 more) and fused levels.
-struct Intermediates {
-    double per_input;
-    double per_output;
-};
-
-Intermediates intermediates(Method m) {
-    switch (m) {
-        case Method::Wavelet: return {2.4, 3.4};
-        case Method::Laplacian: return {0.4, 1.4};
-        default: return {0.0, 1.0};
-    }
-}
 
 }  // namespace
 
@@ -46,10 +31,11 @@ double estimated_bytes(const Cell& c) {
     const double host = kProcessBytes + frame * scenes * (c.frames + 1) + reference + 2 * frame * checked;
     // The CPU backend: its own computation, its backgrounds and kept results in double.
     if (c.backend == Backend::Cpu) return host + reference + 2 * frame * (scenes + checked);
-    const auto im = intermediates(c.method.method);
-    // Upload + planar input, intermediates, readback + backgrounds, and the
-    // fused images Plan::fused() keeps on the host.
-    return host + 2 * inputs + im.per_input * inputs + im.per_output * outputs + 3 * outputs;
+    // Upload + planar input, the method's intermediates (its Vulkan row) and
+    // fused planes, readback + backgrounds, and the fused images Plan::fused()
+    // keeps on the host.
+    const vk::MethodRecorder& m = vk::method_recorder(c.method.method);
+    return host + 2 * inputs + m.floats_per_input * inputs + (m.floats_per_output + 1) * outputs + 3 * outputs;
 }
 
 double memory_budget(double limit_gib) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "core/method_table.hpp"
 #include "io/atomic_write.hpp"
 
 namespace vkfuse::bench {
@@ -31,13 +32,15 @@ struct Frame {  // the plotting area and its log-log mapping
     double y(double err) const { return top + height - (std::log10(err) - y0) / (y1 - y0) * height; }
 };
 
-const char* colour(const std::string& method) {
-    static const std::map<std::string, const char*> palette{
-        {"channel-sum", "#1f77b4"},     {"brovey", "#ff7f0e"},      {"laplacian", "#2ca02c"},
-        {"wavelet/haar", "#d62728"},    {"wavelet/db2", "#9467bd"}, {"wavelet/bior2.2", "#8c564b"},
-        {"wavelet/bior4.4", "#e377c2"}};
-    auto it = palette.find(method);
-    return it == palette.end() ? "#7f7f7f" : it->second;
+// A method's colour is its row's (core/method_table.hpp); the wavelet's cells
+// are told apart by wavelet, bior4.4 keeping the row's colour.
+std::string colour(const std::string& label) {
+    static const std::map<std::string, const char*> wavelets{
+        {"haar", "#d62728"}, {"db2", "#9467bd"}, {"bior2.2", "#8c564b"}};
+    const std::size_t slash = label.find('/');
+    if (slash != std::string::npos)
+        if (auto it = wavelets.find(label.substr(slash + 1)); it != wavelets.end()) return it->second;
+    return std::string(core::method_info(parse_method(label.substr(0, slash))).plot_colour);
 }
 
 std::string num(double v) {
@@ -181,7 +184,7 @@ void write_plot(const std::string& path, const std::vector<CellResult>& results,
         const Frame f = fit(pts);
         svg += axes_svg(f) + legend_svg(f, pts);
         for (const auto& p : pts) {
-            svg += marker_svg(p.marker, f.x(p.ms), f.y(p.error), colour(p.method));
+            svg += marker_svg(p.marker, f.x(p.ms), f.y(p.error), colour(p.method).c_str());
             svg += text_svg(f.x(p.ms) + 7, f.y(p.error) - 6, p.label, " font-size=\"9\" fill=\"#444\"");
         }
     }

@@ -18,7 +18,7 @@ namespace vkfuse::cli {
 namespace {
 
 constexpr OptionSpec kOptions[] = {
-    {"--method", "", "M", "channel-sum, brovey, laplacian or wavelet (required)"},
+    {"--method", "", "M", "{methods} (required)"},
     kLevelsOption,
     kWaveletOption,
     kModeOption,

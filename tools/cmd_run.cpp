@@ -26,7 +26,7 @@ constexpr OptionSpec kOptions[] = {
     {"--sensors", "", "N", "simulated DIGITs, serials SIM-0001.. (default 1)"},
     {"--object", "", "NAME", "what is pressed into the gel (default coin; see below)"},
     {"--sequence", "", "SEQ", "LED settings per cycle, r,g,b each 0..15, joined by + (default 15,15,15+0,15,0)"},
-    {"--method", "", "M", "channel-sum, brovey, laplacian or wavelet (default wavelet)"},
+    {"--method", "", "M", "{methods} (default wavelet)"},
     kLevelsOption,
     kWaveletOption,
     kModeOption,

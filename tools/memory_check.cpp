@@ -4,7 +4,9 @@
 #include <map>
 #include <tuple>
 
+#include "core/method_table.hpp"
 #include "io/memory_available.hpp"
+#include "vk/method_recorders.hpp"
 #include "vkfuse/error.hpp"
 
 namespace vkfuse::cli {
@@ -14,17 +16,17 @@ constexpr double kMiB = 1024.0 * 1024.0;
 constexpr double kCpuProcess = 32 * kMiB;
 constexpr double kVulkanProcess = 192 * kMiB;
 
-bool multiscale(Method m) { return m == Method::Laplacian || m == Method::Wavelet; }
-
+// In images of one frame's size f: the frames as read and in double, the
+// result, and what the method's rows add (its reference's transforms on the
+// CPU; its intermediates on the device).
 double cpu_fuse(double f, int k, Method m) {
-    const double per_frame = 3.0 + (multiscale(m) ? 1.7 : 0.0);
-    return f * (k * per_frame + 4.0 + (multiscale(m) ? 2.0 : 0.0)) + kCpuProcess;
+    const core::MethodInfo& row = core::method_info(m);
+    return f * (k * (3.0 + row.reference_images_per_frame) + 4.0 + row.reference_images_fixed) + kCpuProcess;
 }
 
 double vulkan_fuse(double f, int k, Method m) {
-    const double per_frame = 3.0 + (m == Method::Wavelet ? 1.4 : m == Method::Laplacian ? 0.4 : 0.0);
-    const double fixed = 6.0 + (m == Method::Wavelet ? 2.5 : m == Method::Laplacian ? 0.5 : 0.0);
-    return f * (k * per_frame + fixed) + kVulkanProcess;
+    const vk::MethodRecorder& row = vk::method_recorder(m);
+    return f * (k * (3.0 + row.floats_per_input) + 6.0 + row.floats_per_output) + kVulkanProcess;
 }
 
 std::uint64_t bytes(double b) { return b >= 1.8e19 ? UINT64_MAX : std::uint64_t(b); }

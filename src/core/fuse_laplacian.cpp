@@ -53,4 +53,10 @@ Plane fuse_laplacian(std::span<const Plane> frames, int levels, Rule base, Rule 
     return r;
 }
 
+ImageD fuse_laplacian(std::span<const ImageD> frames, const FusionSpec& spec) {
+    return per_channel(frames, [&](std::span<const Plane> p) {
+        return fuse_laplacian(p, spec.effective_levels(), spec.base_rule, spec.detail_rule);
+    });
+}
+
 }  // namespace vkfuse::core

@@ -24,7 +24,7 @@ double brovey(const std::vector<double>& v) {
 
 }  // namespace
 
-ImageD fuse_channel_sum(std::span<const ImageD> frames) {
+ImageD fuse_channel_sum(std::span<const ImageD> frames, const FusionSpec&) {
     // Frame k was lit by LED k alone (red, green, blue), so its own channel k
     // is the only one carrying that light.
     const ImageD& f0 = frames[0];
@@ -35,7 +35,7 @@ ImageD fuse_channel_sum(std::span<const ImageD> frames) {
     return out;
 }
 
-ImageD fuse_brovey(std::span<const ImageD> frames) {
+ImageD fuse_brovey(std::span<const ImageD> frames, const FusionSpec&) {
     const ImageD& f0 = frames[0];
     ImageD out(f0.height, f0.width, f0.channels);
     std::vector<double> v(frames.size());

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "core/check_finite.hpp"
-#include "core/fusion_methods.hpp"
+#include "core/method_table.hpp"
 #include "core/validate_shape.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/reference.hpp"
@@ -27,37 +27,11 @@ void core::check_frames(std::span<const ImageD> frames) {
     }
 }
 
-namespace {
-
-// Runs a single-plane method on every channel of every frame.
-template <class PlaneFusion>
-ImageD per_channel(std::span<const ImageD> frames, PlaneFusion fuse) {
-    ImageD out(frames[0].height, frames[0].width, frames[0].channels);
-    std::vector<core::Plane> planes(frames.size());
-    for (int c = 0; c < out.channels; ++c) {
-        for (std::size_t k = 0; k < frames.size(); ++k) planes[k] = core::extract_channel(frames[k], c);
-        core::insert_channel(fuse(std::span<const core::Plane>(planes)), out, c);
-    }
-    return out;
-}
-
-}  // namespace
-
 ImageD fuse_reference(std::span<const ImageD> frames, const FusionSpec& spec) {
     if (frames.empty()) validate(spec, 1, 1, 1, 0);  // throws the frame-count message
     validate(spec, frames[0].height, frames[0].width, frames[0].channels, int(frames.size()));
     core::check_frames(frames);
-    switch (spec.method) {
-        case Method::ChannelSum: return core::fuse_channel_sum(frames);
-        case Method::Brovey: return core::fuse_brovey(frames);
-        case Method::Laplacian:
-            return per_channel(frames, [&](std::span<const core::Plane> p) {
-                return core::fuse_laplacian(p, spec.effective_levels(), spec.base_rule, spec.detail_rule);
-            });
-        case Method::Wavelet:
-            return per_channel(frames, [&](std::span<const core::Plane> p) { return core::fuse_wavelet(p, spec); });
-    }
-    throw Error(ErrorKind::InvalidArgument, "--method: invalid method enumerator");
+    return core::method_info(spec.method).reference(frames, spec);
 }
 
 }  // namespace vkfuse

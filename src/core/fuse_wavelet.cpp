@@ -39,4 +39,8 @@ Plane fuse_wavelet(std::span<const Plane> frames, const FusionSpec& spec) {
     return waverec2(fused, spec.wavelet, spec.mode);
 }
 
+ImageD fuse_wavelet(std::span<const ImageD> frames, const FusionSpec& spec) {
+    return per_channel(frames, [&](std::span<const Plane> p) { return fuse_wavelet(p, spec); });
+}
+
 }  // namespace vkfuse::core

@@ -4,20 +4,18 @@
 #include <string>
 #include <utility>
 
+#include "core/method_table.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/fusion.hpp"
 
 namespace vkfuse {
 namespace {
 
-// One table per enum keeps to_string and parse_* in agreement by construction.
+// One table per enum keeps to_string and parse_* in agreement by construction
+// (methods: the method table's names).
 template <class E>
 using NameTable = std::array<std::pair<E, std::string_view>, 4>;
 
-constexpr NameTable<Method> kPublicMethods{{{Method::ChannelSum, "channel-sum"},
-                                            {Method::Brovey, "brovey"},
-                                            {Method::Laplacian, "laplacian"},
-                                            {Method::Wavelet, "wavelet"}}};
 constexpr NameTable<Wavelet> kWavelets{{{Wavelet::Haar, "haar"},
                                         {Wavelet::Db2, "db2"},
                                         {Wavelet::Bior22, "bior2.2"},
@@ -58,21 +56,19 @@ auto parse_name(const Table& table, std::string_view text, std::string_view opti
 
 }  // namespace
 
-int FusionSpec::effective_levels() const {
-    if (levels != 0) return levels;
-    switch (method) {
-        case Method::Laplacian: return 4;
-        case Method::Wavelet: return 3;
-        default: return 0;
-    }
-}
+int FusionSpec::effective_levels() const { return levels != 0 ? levels : core::method_info(method).default_levels; }
 
-std::string_view to_string(Method m) { return name_of(kPublicMethods, m); }
+std::string_view to_string(Method m) { return core::method_info(m).name; }
 std::string_view to_string(Wavelet w) { return name_of(kWavelets, w); }
 std::string_view to_string(WaveletMode m) { return name_of(kModes, m); }
 std::string_view to_string(Rule r) { return name_of(kRules, r); }
 
-Method parse_method(std::string_view s) { return parse_name(kPublicMethods, s, "--method", "method"); }
+Method parse_method(std::string_view s) {
+    for (const core::MethodInfo& row : core::method_table())
+        if (row.name == s) return row.method;
+    throw Error(ErrorKind::InvalidArgument, "--method: unknown method \"" + std::string(s) + "\" (expected " +
+                                                core::method_names(", ") + ")");
+}
 Wavelet parse_wavelet(std::string_view s) { return parse_name(kWavelets, s, "--wavelet", "wavelet"); }
 WaveletMode parse_wavelet_mode(std::string_view s) { return parse_name(kModes, s, "--mode", "mode"); }
 Rule parse_rule(std::string_view s) { return parse_rule(s, "--base-rule/--detail-rule"); }

@@ -2,6 +2,7 @@
 // one-line message that names the offending option (include/vkfuse/fusion.hpp).
 #include <string>
 
+#include "core/method_table.hpp"
 #include "core/validate_shape.hpp"
 #include "vkfuse/error.hpp"
 #include "vkfuse/fusion.hpp"
@@ -13,23 +14,21 @@ namespace {
 
 std::string size_text(int height, int width) { return std::to_string(height) + "x" + std::to_string(width); }
 
-// pyrDown halves each side (rounding up), so 31 levels take any image an int
-// can size down to 1 x 1, and deeper levels only repeat that 1 x 1 top. The
-// bound keeps an absurd --levels from allocating and recording one pyramid
-// level per unit (2^31 levels ran out of memory instead of failing).
-constexpr int kMaxLaplacianLevels = 32;
-
 // Side a square image needs for one level: dwt_max_level(n, F) >= 1 <=> n >= 2 (F - 1).
 int min_side_for_one_level(Wavelet w) { return 2 * (filter_length(w) - 1); }
 
+std::string why(const core::MethodInfo& m) { return m.limits_why.empty() ? "" : " (" + std::string(m.limits_why) + ")"; }
+
+// K and C limits of the method's row (channel-sum: 3 frames of RGB).
 void check_frame_count(const FusionSpec& spec, int channels, int frames) {
-    const std::string method = "--method " + std::string(to_string(spec.method));
-    if (spec.method == Method::ChannelSum) {
-        if (frames != 3)
-            fail(method + ": needs exactly 3 frames (red, green, blue LED), got " + std::to_string(frames));
-        if (channels != 3)
-            fail(method + ": needs 3-channel (RGB) frames, got " + std::to_string(channels) + " channel(s)");
-    }
+    const core::MethodInfo& m = core::method_info(spec.method);
+    const std::string method = "--method " + std::string(m.name);
+    if (m.exact_frames != 0 && frames != m.exact_frames)
+        fail(method + ": needs exactly " + std::to_string(m.exact_frames) + " frames" + why(m) + ", got " +
+             std::to_string(frames));
+    if (m.exact_channels != 0 && channels != m.exact_channels)
+        fail(method + ": needs " + std::to_string(m.exact_channels) + "-channel" +
+             (m.exact_channels == 3 ? " (RGB)" : "") + " frames, got " + std::to_string(channels) + " channel(s)");
 }
 
 void check_wavelet_levels(const FusionSpec& spec, int height, int width) {
@@ -63,12 +62,13 @@ void validate(const FusionSpec& spec, int height, int width, int channels, int f
     core::validate_shape(height, width, channels, frames);
     if (spec.levels < 0) fail("--levels " + std::to_string(spec.levels) + ": must be >= 0 (0 = method default)");
     check_frame_count(spec, channels, frames);
-    if (spec.method == Method::Wavelet) check_wavelet_levels(spec, height, width);
+    const core::MethodInfo& m = core::method_info(spec.method);
+    if (m.uses_wavelet) check_wavelet_levels(spec, height, width);
     // pyrDown of any size >= 1 is >= 1, so every Laplacian level count >= 1 is
-    // computable; only the pointless ones past 1 x 1 are bounded.
-    if (spec.method == Method::Laplacian && spec.effective_levels() > kMaxLaplacianLevels)
-        fail("--levels " + std::to_string(spec.levels) + ": a Laplacian pyramid takes at most " +
-             std::to_string(kMaxLaplacianLevels) + " levels (31 reach 1x1 from any size)");
+    // computable; only the pointless ones past 1 x 1 are bounded (the row's max).
+    if (m.max_levels != 0 && spec.effective_levels() > m.max_levels)
+        fail("--levels " + std::to_string(spec.levels) + ": " + std::string(m.noun) + " takes at most " +
+             std::to_string(m.max_levels) + " levels" + why(m));
 }
 
 }  // namespace vkfuse

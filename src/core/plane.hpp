@@ -2,6 +2,7 @@
 // doubles: the unit the multi-scale transforms (pyramids, wavelets) work on.
 #pragma once
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "vkfuse/image.hpp"
@@ -28,5 +29,17 @@ void insert_channel(const Plane& plane, ImageD& image, int c);
 // The top-left height x width corner of p (height <= p.height, width <= p.width).
 // pywt's waverec2 returns an even size for odd inputs; this trims it back.
 Plane crop(const Plane& p, int height, int width);
+
+// Runs a single-plane fusion (K planes -> one) on every channel of K frames.
+template <class PlaneFusion>
+ImageD per_channel(std::span<const ImageD> frames, PlaneFusion fuse) {
+    ImageD out(frames[0].height, frames[0].width, frames[0].channels);
+    std::vector<Plane> planes(frames.size());
+    for (int c = 0; c < out.channels; ++c) {
+        for (std::size_t k = 0; k < frames.size(); ++k) planes[k] = extract_channel(frames[k], c);
+        insert_channel(fuse(std::span<const Plane>(planes)), out, c);
+    }
+    return out;
+}
 
 }  // namespace vkfuse::core

@@ -4,14 +4,25 @@
 
 namespace vkfuse::vk {
 
-VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image) {
+namespace {
+
+const char* stage_name(PointwiseKernel k) {
+    switch (k) {
+        case PointwiseKernel::Brovey: return "brovey";
+        case PointwiseKernel::ChannelSum: return "channel_sum";
+        case PointwiseKernel::Mean: return "mean";
+    }
+    return "pointwise";
+}
+
+}  // namespace
+
+VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image,
+                                 PointwiseKernel kernel) {
     const std::uint32_t pixels = std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height);
     const VkDeviceAddress out = g.planes(std::uint64_t(g.planes_out()) * pixels);
     const bool quads = pixels % 4 == 0;
     const Grid grid = grid_1d(quads ? pixels / 4 : pixels, 256);
-    const bool mean = g.kind == PlanKind::BackgroundMean;
-    const Method method = g.cfg.fusion.method;
-    const std::uint32_t kernel_method = mean ? 2 : method == Method::ChannelSum ? 1 : 0;
     const DeviceSpan planes = g.span(out), img = image ? *image : planes;
     g.rec.dispatch("pointwise_fuse",
                    {frames, frames, planes, planes, img, img,
@@ -21,13 +32,13 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
                        .u32(std::uint32_t(g.cfg.channels))
                        .u32(g.cfg.input == PixelType::U8)
                        .u32(std::uint32_t(g.cfg.frames))
-                       .u32(kernel_method)
+                       .u32(std::uint32_t(kernel))
                        .u32(g.brovey_thresholds ? 1 : 0)
                        .u32(quads)
                        .u32(g.cfg.want_metrics)
                        .u32(image.has_value()),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
-    g.rec.mark(mean ? "mean" : method == Method::ChannelSum ? "channel_sum" : "brovey");
+    g.rec.mark(stage_name(kernel));
     return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/validate_shape.hpp"
 #include "vk/magnitude.hpp"
+#include "vk/method_recorders.hpp"
 #include "vk/plan_impl.hpp"
 #include "vkfuse/error.hpp"
 
@@ -91,23 +92,29 @@ void Plan::Impl::record() {
     addressed = ctx.device_addresses_only || vk::needs_device_addresses(cfg, ctx.properties.limits);
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed);
-    vk::GraphBuilder g{ctx, cfg, kind, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
+    vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
     const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
     const vk::DeviceSpan frames = upload.span(), image = readback.span().sub(0, partials_offset);
-    const Method method = cfg.fusion.method;
+    const std::optional<vk::DeviceSpan> wanted_image = cfg.want_fused ? std::optional(image) : std::nullopt;
     VkDeviceAddress fused_planes = 0;
-    const bool fuses = kind == vk::PlanKind::Fuse;
-    const bool pointwise = kind == vk::PlanKind::BackgroundMean ||
-                           (fuses && (method == Method::ChannelSum || method == Method::Brovey));
-    if (pointwise) {
-        fused_planes = record_pointwise(g, frames, cfg.want_fused ? std::optional(image) : std::nullopt);
-    } else {
-        vk::FrameSource input(g, frames);
-        fused_planes = !fuses                      ? input.planes()  // scoring: the frame is its own result
-                       : method == Method::Laplacian ? record_laplacian(g, input)
-                                                     : record_wavelet(g, input);
+    bool pointwise = false;  // the fusion kernel wrote the image itself
+    vk::FrameSource input(g, frames);
+    switch (kind) {
+        case vk::PlanKind::Fuse: {
+            const vk::MethodRecorder& method = vk::method_recorder(cfg.fusion.method);
+            pointwise = method.shape == vk::GraphShape::Pointwise;
+            fused_planes = method.record(g, input, wanted_image);
+            break;
+        }
+        case vk::PlanKind::Score: fused_planes = input.planes(); break;  // the frame is its own result
+        case vk::PlanKind::BackgroundMean:
+            pointwise = true;
+            fused_planes = record_pointwise(g, frames, wanted_image, vk::PointwiseKernel::Mean);
+            break;
+    }
+    if (!pointwise) {
         if (cfg.want_fused && !vk::metrics_write_image(cfg)) {
             const vk::DeviceSpan fused = g.span(fused_planes);
             rec.dispatch("pack", {fused, fused, image, image},

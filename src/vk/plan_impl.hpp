@@ -23,7 +23,6 @@ enum class PlanKind {
 struct GraphBuilder {
     Context::Impl& ctx;
     const PlanConfig& cfg;
-    PlanKind kind;
     Recorder& rec;
     std::vector<Buffer>& buffers;  // owned by the plan; every intermediate lives here
     // Brovey in a float32-input plan: per sensor, the dark threshold in that
@@ -74,8 +73,11 @@ private:
 // Records the fusion of the input and returns the address of the fused
 // planes (S*C planes of H x W, plane s*C + c).
 // Brovey, channel-sum and the mean read the frames as uploaded and write the
-// fused image into `image` themselves (when given): no unpack, no pack.
-VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image);
+// fused image into `image` themselves (when given): no unpack, no pack. The
+// kernel's method ids, as shaders/pointwise_fuse.comp reads them:
+enum class PointwiseKernel : std::uint32_t { Brovey = 0, ChannelSum = 1, Mean = 2 };
+VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image,
+                                 PointwiseKernel kernel);
 VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& input);
 VkDeviceAddress record_wavelet(GraphBuilder& g, FrameSource& input);
 

@@ -1,0 +1,41 @@
+// The fusion methods' Vulkan rows (vk/method_recorders.hpp).
+#include "vk/method_recorders.hpp"
+
+#include "vkfuse/error.hpp"
+
+namespace vkfuse::vk {
+namespace {
+
+VkDeviceAddress channel_sum(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image) {
+    return record_pointwise(g, input.frames(), image, PointwiseKernel::ChannelSum);
+}
+VkDeviceAddress brovey(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image) {
+    return record_pointwise(g, input.frames(), image, PointwiseKernel::Brovey);
+}
+VkDeviceAddress laplacian(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan>) {
+    return record_laplacian(g, input);
+}
+VkDeviceAddress wavelet(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan>) {
+    return record_wavelet(g, input);
+}
+
+constexpr MethodRecorder kChannelSum{Method::ChannelSum, GraphShape::Pointwise, channel_sum, 0, 0, 1.0 / 3, 0};
+// Brovey: clamp, sum, weight and weighted sum per frame sample.
+constexpr MethodRecorder kBrovey{Method::Brovey, GraphShape::Pointwise, brovey, 0, 0, 1, 4};
+constexpr MethodRecorder kLaplacian{Method::Laplacian, GraphShape::Multiscale, laplacian, 0.4, 0.4, 1, 0};
+constexpr MethodRecorder kWavelet{Method::Wavelet, GraphShape::Multiscale, wavelet, 2.4, 2.4, 1, 0};
+
+}  // namespace
+
+const MethodRecorder& method_recorder(Method m) {
+    // No default: a Method without its row here fails to compile (-Wswitch).
+    switch (m) {
+        case Method::ChannelSum: return kChannelSum;
+        case Method::Brovey: return kBrovey;
+        case Method::Laplacian: return kLaplacian;
+        case Method::Wavelet: return kWavelet;
+    }
+    throw Error(ErrorKind::InvalidArgument, "--method: invalid method enumerator");
+}
+
+}  // namespace vkfuse::vk

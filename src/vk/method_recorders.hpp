@@ -1,0 +1,44 @@
+// vk/method_recorders.hpp - one row per fusion method on the Vulkan side: how
+// a plan records it, and what it costs, for the plan, the memory estimates of
+// the CLI and the bench, and the bench's floor model.
+//
+// method_recorder() switches over every Method with no default, so under
+// -Wall -Werror a Method without its row here does not compile (its
+// core/method_table.hpp row is checked the same way).
+#pragma once
+#include <optional>
+
+#include "vk/plan_impl.hpp"
+
+namespace vkfuse::vk {
+
+enum class GraphShape {
+    // One kernel from the frames as uploaded to the fused planes, which also
+    // writes the read-back image: no unpack, no pack.
+    Pointwise,
+    // A chain of passes over planes (FrameSource); the metric pass or pack
+    // writes the read-back image.
+    Multiscale,
+};
+
+struct MethodRecorder {
+    Method method;
+    GraphShape shape;
+    // Records the method's passes for every sensor and returns the address of
+    // the fused planes (S*C planes, plane s*C + c). A Pointwise method also
+    // writes `image` (the read-back HWC images) when given one.
+    VkDeviceAddress (*record)(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image);
+    // Device floats the method keeps beyond the upload, the unpacked input and
+    // the fused planes, per input float (S*K*C*H*W) and per output float
+    // (S*C*H*W): a wavelet every level's coefficient blocks of every frame, a
+    // scratch plane set and every level's fused blocks; a Laplacian a Gaussian
+    // pyramid (a third more) and its fused levels.
+    double floats_per_input, floats_per_output;
+    // The ideal pointwise pass (bench floor model): the fraction of each frame
+    // it reads and the arithmetic per frame sample it does.
+    double read_fraction, flops_per_frame_sample;
+};
+
+const MethodRecorder& method_recorder(Method m);
+
+}  // namespace vkfuse::vk
