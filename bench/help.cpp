@@ -1,9 +1,11 @@
 #include "options.hpp"
 
+#include "core/method_table.hpp"
+
 namespace vkfuse::bench {
 
 std::string help_text() {
-    return R"(usage: vkfuse-bench [--quick | --full] [filters] [--json FILE.json] [--plot FILE.svg] [options]
+    std::string text = R"(usage: vkfuse-bench [--quick | --full] [filters] [--json FILE.json] [--plot FILE.svg] [options]
 
 Run time against error of vkfuse's fusion (+ sharpness, contrast and background
 difference, fused image read back) per cell of the matrix
@@ -26,7 +28,7 @@ Scopes:
   Only --quick and --full have fp16 cells unless --precision asks for them.
 
 Filters (comma lists; each replaces that axis of the scope):
-  --method M        channel-sum, brovey, laplacian, wavelet
+  --method M        {methods}
   --wavelet W       haar, db2, bior2.2, bior4.4 (alone it implies --method wavelet)
   --backend B       cpu (double-precision reference), vulkan
   --precision P     fp32, fp16 (float16 planes between kernels, float32 arithmetic;
@@ -97,6 +99,9 @@ How it measures:
 
 Exit status: 0 done, 1 a run-time failure, 2 bad command line (one-line message).
 )";
+    const std::string key = "{methods}";
+    text.replace(text.find(key), key.size(), core::method_names(", "));  // the method table's names
+    return text;
 }
 
 }  // namespace vkfuse::bench

@@ -19,7 +19,7 @@ layout(push_constant, std430) uniform Push {
     uint channels;
     uint is_u8;
     uint frames;
-    uint method;  // 0 brovey, 1 channel-sum, 2 mean
+    uint method;  // 0 brovey, 1 channel-sum, 2 mean (the ids of vk/method_recorders.cpp and kPointwiseMean)
     uint scaled_threshold;  // brovey: sensor s compares with thresholds.v[s]
     uint quads;   // pixels % 4 == 0
     uint write_planes;  // the metrics read them

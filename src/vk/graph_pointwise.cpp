@@ -4,21 +4,8 @@
 
 namespace vkfuse::vk {
 
-namespace {
-
-const char* stage_name(PointwiseKernel k) {
-    switch (k) {
-        case PointwiseKernel::Brovey: return "brovey";
-        case PointwiseKernel::ChannelSum: return "channel_sum";
-        case PointwiseKernel::Mean: return "mean";
-    }
-    return "pointwise";
-}
-
-}  // namespace
-
 VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image,
-                                 PointwiseKernel kernel) {
+                                 std::uint32_t kernel, const char* stage) {
     const std::uint32_t pixels = std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height);
     const VkDeviceAddress out = g.planes(std::uint64_t(g.planes_out()) * pixels);
     const bool quads = pixels % 4 == 0;
@@ -32,13 +19,13 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
                        .u32(std::uint32_t(g.cfg.channels))
                        .u32(g.cfg.input == PixelType::U8)
                        .u32(std::uint32_t(g.cfg.frames))
-                       .u32(std::uint32_t(kernel))
+                       .u32(kernel)
                        .u32(g.brovey_thresholds ? 1 : 0)
                        .u32(quads)
                        .u32(g.cfg.want_metrics)
                        .u32(image.has_value()),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
-    g.rec.mark(stage_name(kernel));
+    g.rec.mark(stage);
     return out;
 }
 

@@ -6,24 +6,21 @@
 namespace vkfuse::vk {
 namespace {
 
-VkDeviceAddress channel_sum(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image) {
-    return record_pointwise(g, input.frames(), image, PointwiseKernel::ChannelSum);
+VkDeviceAddress pointwise(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image, std::uint32_t kernel) {
+    return record_pointwise(g, input.frames(), image, kernel, to_string(g.cfg.fusion.method).data());
 }
-VkDeviceAddress brovey(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image) {
-    return record_pointwise(g, input.frames(), image, PointwiseKernel::Brovey);
-}
-VkDeviceAddress laplacian(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan>) {
+VkDeviceAddress laplacian(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan>, std::uint32_t) {
     return record_laplacian(g, input);
 }
-VkDeviceAddress wavelet(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan>) {
+VkDeviceAddress wavelet(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan>, std::uint32_t) {
     return record_wavelet(g, input);
 }
 
-constexpr MethodRecorder kChannelSum{Method::ChannelSum, GraphShape::Pointwise, channel_sum, 0, 0, 1.0 / 3, 0};
+constexpr MethodRecorder kChannelSum{Method::ChannelSum, GraphShape::Pointwise, pointwise, 1, 0, 0, 1.0 / 3, 0};
 // Brovey: clamp, sum, weight and weighted sum per frame sample.
-constexpr MethodRecorder kBrovey{Method::Brovey, GraphShape::Pointwise, brovey, 0, 0, 1, 4};
-constexpr MethodRecorder kLaplacian{Method::Laplacian, GraphShape::Multiscale, laplacian, 0.4, 0.4, 1, 0};
-constexpr MethodRecorder kWavelet{Method::Wavelet, GraphShape::Multiscale, wavelet, 2.4, 2.4, 1, 0};
+constexpr MethodRecorder kBrovey{Method::Brovey, GraphShape::Pointwise, pointwise, 0, 0, 0, 1, 4};
+constexpr MethodRecorder kLaplacian{Method::Laplacian, GraphShape::Multiscale, laplacian, 0, 0.4, 0.4, 1, 0};
+constexpr MethodRecorder kWavelet{Method::Wavelet, GraphShape::Multiscale, wavelet, 0, 2.4, 2.4, 1, 0};
 
 }  // namespace
 

@@ -27,7 +27,10 @@ struct MethodRecorder {
     // Records the method's passes for every sensor and returns the address of
     // the fused planes (S*C planes, plane s*C + c). A Pointwise method also
     // writes `image` (the read-back HWC images) when given one.
-    VkDeviceAddress (*record)(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image);
+    VkDeviceAddress (*record)(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image,
+                              std::uint32_t pointwise_kernel);
+    // Pointwise: the method id shaders/pointwise_fuse.comp switches on.
+    std::uint32_t pointwise_kernel;
     // Device floats the method keeps beyond the upload, the unpacked input and
     // the fused planes, per input float (S*K*C*H*W) and per output float
     // (S*C*H*W): a wavelet every level's coefficient blocks of every frame, a

@@ -105,13 +105,13 @@ void Plan::Impl::record() {
         case vk::PlanKind::Fuse: {
             const vk::MethodRecorder& method = vk::method_recorder(cfg.fusion.method);
             pointwise = method.shape == vk::GraphShape::Pointwise;
-            fused_planes = method.record(g, input, wanted_image);
+            fused_planes = method.record(g, input, wanted_image, method.pointwise_kernel);
             break;
         }
         case vk::PlanKind::Score: fused_planes = input.planes(); break;  // the frame is its own result
         case vk::PlanKind::BackgroundMean:
             pointwise = true;
-            fused_planes = record_pointwise(g, frames, wanted_image, vk::PointwiseKernel::Mean);
+            fused_planes = record_pointwise(g, frames, wanted_image, vk::kPointwiseMean, "mean");
             break;
     }
     if (!pointwise) {

@@ -73,11 +73,12 @@ private:
 // Records the fusion of the input and returns the address of the fused
 // planes (S*C planes of H x W, plane s*C + c).
 // Brovey, channel-sum and the mean read the frames as uploaded and write the
-// fused image into `image` themselves (when given): no unpack, no pack. The
-// kernel's method ids, as shaders/pointwise_fuse.comp reads them:
-enum class PointwiseKernel : std::uint32_t { Brovey = 0, ChannelSum = 1, Mean = 2 };
+// fused image into `image` themselves (when given): no unpack, no pack.
+// `kernel` is the method id shaders/pointwise_fuse.comp switches on (a
+// method's is in its Vulkan row), `stage` the name --profile reports.
+inline constexpr std::uint32_t kPointwiseMean = 2;  // the background model's mean
 VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image,
-                                 PointwiseKernel kernel);
+                                 std::uint32_t kernel, const char* stage);
 VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& input);
 VkDeviceAddress record_wavelet(GraphBuilder& g, FrameSource& input);
 
