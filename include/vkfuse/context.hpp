@@ -7,6 +7,9 @@
 #include <vector>
 
 namespace vkfuse {
+namespace vk {
+struct ContextAccess;
+}
 
 struct DeviceInfo {
     int index = 0;            // position in the loader's enumeration
@@ -64,9 +67,10 @@ public:
     std::uint64_t validation_message_count() const;
 
     struct Impl;
-    Impl& impl() { return *impl_; }
 
 private:
+    friend struct vk::ContextAccess;  // the library's own way to its device
+    Impl& impl() { return *impl_; }
     std::unique_ptr<Impl> impl_;
 };
 

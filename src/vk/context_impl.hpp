@@ -77,4 +77,14 @@ inline constexpr std::uint32_t kPushConstantBytes = 128;
 // Most buffers one kernel binds (shaders/bindings.glsl).
 inline constexpr std::uint32_t kMaxKernelBuffers = 8;
 
+namespace vk {
+
+// The library's access to a Context's device (Context::impl() is private: no
+// Vulkan type is part of ordinary use).
+struct ContextAccess {
+    static Context::Impl& of(Context& context) { return context.impl(); }
+};
+
+}  // namespace vk
+
 }  // namespace vkfuse

@@ -10,7 +10,7 @@ namespace vkfuse::vk {
 
 CopyBandwidth measure_copy_bandwidth(Context& context, std::uint64_t bytes, int repeats) {
     if (bytes == 0 || repeats < 1) throw Error(ErrorKind::InvalidArgument, "copy bandwidth: bytes and repeats must be >= 1");
-    auto& ctx = context.impl();
+    auto& ctx = ContextAccess::of(context);
     Buffer src(ctx, bytes, MemoryUse::Upload);
     Buffer dst(ctx, bytes, MemoryUse::Device);
     // Touch every source page first, so the first copy does not pay for page faults.

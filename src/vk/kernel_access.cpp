@@ -241,9 +241,9 @@ KernelAccess measure_kernel_access(Context& context, std::uint64_t bytes, int re
     // groups are complete; no more than one descriptor may bind
     // (maxStorageBufferRange: 128 MiB on lavapipe, at most 4 GiB - 1 anywhere).
     const std::uint64_t per_step = std::uint64_t(4) * kGroup;
-    const std::uint64_t range = context.impl().properties.limits.maxStorageBufferRange;
+    const std::uint64_t range = ContextAccess::of(context).properties.limits.maxStorageBufferRange;
     const auto floats = std::uint32_t(std::min(bytes, range) / sizeof(float) / per_step * per_step);
-    Probe probe(context.impl(), floats, repeats);
+    Probe probe(ContextAccess::of(context), floats, repeats);
     KernelAccess r;
     r.floats = floats;
     const double n = floats;

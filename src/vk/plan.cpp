@@ -189,10 +189,11 @@ void check_device_results(const PlanConfig& c, int sensor, std::span<const float
 }  // namespace
 
 Plan::Plan(Context& context, const PlanConfig& config)
-    : impl_(std::make_unique<Impl>(context.impl(), config, config.fuse ? vk::PlanKind::Fuse : vk::PlanKind::Score)) {}
+    : impl_(std::make_unique<Impl>(vk::ContextAccess::of(context), config,
+                                   config.fuse ? vk::PlanKind::Fuse : vk::PlanKind::Score)) {}
 Plan::Plan(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Plan Plan::Impl::make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind) {
-    return Plan(std::make_unique<Impl>(context.impl(), config, plan_kind));
+    return Plan(std::make_unique<Impl>(vk::ContextAccess::of(context), config, plan_kind));
 }
 Plan::~Plan() = default;
 Plan::Plan(Plan&&) noexcept = default;
