@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "sensor/sim_calibration.hpp"
+#include "sim/calibration.hpp"
 #include "sim_support.hpp"
 #include "test_support.hpp"
 #include "vkfuse/io.hpp"

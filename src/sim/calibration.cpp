@@ -1,5 +1,5 @@
-// Least-squares LED light fields from a real frame (sensor/sim_calibration.hpp).
-#include "sensor/sim_calibration.hpp"
+// Least-squares LED light fields from a real frame (sim/calibration.hpp).
+#include "sim/calibration.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "sensor/sim_raster.hpp"
+#include "sim/raster.hpp"
 
 namespace vkfuse::sim {
 namespace {

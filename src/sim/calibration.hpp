@@ -1,10 +1,10 @@
-// sensor/sim_calibration.hpp - how the simulator's LED light fields are
+// sim/calibration.hpp - how the simulator's LED light fields are
 // obtained from a real DIGIT frame, so the stored constants can be re-derived
 // (and are, by tests/test_cpu_sim_calibration.cpp).
 #pragma once
 #include <array>
 
-#include "sensor/sim_led.hpp"
+#include "sim/led.hpp"
 #include "vkfuse/image.hpp"
 
 namespace vkfuse::sim {

@@ -1,5 +1,5 @@
-// Noise, gain, quantisation and saturation of the simulated camera (sensor/sim_camera.hpp).
-#include "sensor/sim_camera.hpp"
+// Noise, gain, quantisation and saturation of the simulated camera (sim/camera.hpp).
+#include "sim/camera.hpp"
 
 #include <algorithm>
 #include <cmath>

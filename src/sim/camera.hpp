@@ -1,12 +1,12 @@
-// sensor/sim_camera.hpp - the image sensor: integrates each row's light,
+// sim/camera.hpp - the image sensor: integrates each row's light,
 // adds shot and read noise, amplifies, quantises to 8 bits and clips.
 #pragma once
 #include <array>
 #include <cstdint>
 #include <vector>
 
-#include "sensor/sim_optics.hpp"
-#include "sensor/sim_rng.hpp"
+#include "sim/optics.hpp"
+#include "sim/rng.hpp"
 
 namespace vkfuse::sim {
 
@@ -22,7 +22,7 @@ struct CameraNoise {
     static CameraNoise digit() { return {}; }
 };
 
-// How one frame is read out (set by the ISP, see sim_isp.hpp).
+// How one frame is read out (set by the ISP, see sim/isp.hpp).
 struct Readout {
     double exposure_scale = 1;                 // exposure / nominal exposure: more light collected
     double analog_gain = 1;                    // amplifies signal and noise alike

@@ -1,12 +1,12 @@
-// Both faces of a coin (sensor/sim_relief.hpp): a raised rim, a ring of beads
+// Both faces of a coin (sim/relief.hpp): a raised rim, a ring of beads
 // and a bas-relief design - a profile portrait or the value within a wreath.
 // Proportions of a 14 mm coin, relief about 0.1 mm as struck coins have.
 #include <cmath>
 #include <numbers>
 
-#include "sensor/sim_glyphs.hpp"
-#include "sensor/sim_relief.hpp"
-#include "sensor/sim_shapes.hpp"
+#include "sim/glyphs.hpp"
+#include "sim/relief.hpp"
+#include "sim/shapes.hpp"
 
 namespace vkfuse::sim {
 namespace {

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <deque>
 
-#include "sensor/sim_camera.hpp"
-#include "sensor/sim_isp.hpp"
-#include "sensor/sim_relief.hpp"
-#include "sensor/sim_scene.hpp"
-#include "sensor/sim_shutter.hpp"
+#include "sim/camera.hpp"
+#include "sim/isp.hpp"
+#include "sim/relief.hpp"
+#include "sim/scene.hpp"
+#include "sim/shutter.hpp"
 #include "vkfuse/error.hpp"
 
 namespace vkfuse {

@@ -1,5 +1,5 @@
-// The elastomer's response to a pressed object (sensor/sim_gel.hpp).
-#include "sensor/sim_gel.hpp"
+// The elastomer's response to a pressed object (sim/gel.hpp).
+#include "sim/gel.hpp"
 
 #include <algorithm>
 #include <cmath>

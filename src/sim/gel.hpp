@@ -1,7 +1,7 @@
-// sensor/sim_gel.hpp - the elastomer: an object's relief pressed into the
+// sim/gel.hpp - the elastomer: an object's relief pressed into the
 // gel becomes a smooth displacement field of the membrane the camera films.
 #pragma once
-#include "sensor/sim_raster.hpp"
+#include "sim/raster.hpp"
 
 namespace vkfuse::sim {
 

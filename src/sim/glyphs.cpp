@@ -1,6 +1,6 @@
-// Stroke font (sensor/sim_glyphs.hpp). Glyphs are drawn in a box of height 1
+// Stroke font (sim/glyphs.hpp). Glyphs are drawn in a box of height 1
 // (v down) and their own advance width; curves are polylines of arcs.
-#include "sensor/sim_glyphs.hpp"
+#include "sim/glyphs.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,10 +1,10 @@
-// sensor/sim_glyphs.hpp - a tiny stroke font for embossed lettering (the
+// sim/glyphs.hpp - a tiny stroke font for embossed lettering (the
 // text object, the value on a coin, the logo on LEGO studs).
 #pragma once
 #include <string_view>
 #include <vector>
 
-#include "sensor/sim_shapes.hpp"
+#include "sim/shapes.hpp"
 
 namespace vkfuse::sim {
 

@@ -1,5 +1,5 @@
-// Auto exposure and auto white balance (sensor/sim_isp.hpp).
-#include "sensor/sim_isp.hpp"
+// Auto exposure and auto white balance (sim/isp.hpp).
+#include "sim/isp.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// sensor/sim_isp.hpp - the camera's own image processor: auto exposure and
+// sim/isp.hpp - the camera's own image processor: auto exposure and
 // auto white balance, as the DIGIT's camera module runs them while streaming.
 //
 // Why they matter here: a frame lit by the green LED alone gets about half the
@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "sensor/sim_camera.hpp"
+#include "sim/camera.hpp"
 
 namespace vkfuse::sim {
 

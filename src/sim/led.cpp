@@ -1,5 +1,5 @@
-// The DIGIT LED rig, calibrated (sensor/sim_led.hpp).
-#include "sensor/sim_led.hpp"
+// The DIGIT LED rig, calibrated (sim/led.hpp).
+#include "sim/led.hpp"
 
 namespace vkfuse::sim {
 

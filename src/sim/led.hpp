@@ -1,4 +1,4 @@
-// sensor/sim_led.hpp - the DIGIT's three rim LEDs and its camera's colour
+// sim/led.hpp - the DIGIT's three rim LEDs and its camera's colour
 // response, as numbers calibrated against a real DIGIT background frame.
 #pragma once
 #include <array>
@@ -9,7 +9,7 @@ namespace vkfuse::sim {
 // (lens shading included), in camera DN at full drive: a cubic polynomial in
 // (x, y) / 10 mm with terms 1, x, y, x^2, xy, y^2, x^3, x^2 y, x y^2, y^3.
 // How the housing and light guide spread an LED's light is not modelled from
-// first principles; it is measured (see sim_calibration.hpp).
+// first principles; it is measured (see sim/calibration.hpp).
 using LightField = std::array<double, 10>;
 // The ten terms at a point (what the coefficients multiply).
 LightField light_field_terms(double x_mm, double y_mm);
@@ -41,7 +41,7 @@ struct LedRig {
     double camera_mm = 10;         // lens height above the membrane (view directions)
 };
 
-// The rig fitted to tests/data/digit_bg_tacto.png (see sim_led.cpp).
+// The rig fitted to tests/data/digit_bg_tacto.png (see sim/led.cpp).
 LedRig digit_led_rig();
 
 // A DIGIT LED level 0..max_level as a fraction of full light: linear in the

@@ -1,5 +1,5 @@
-// Shading of the membrane under each LED (sensor/sim_optics.hpp).
-#include "sensor/sim_optics.hpp"
+// Shading of the membrane under each LED (sim/optics.hpp).
+#include "sim/optics.hpp"
 
 #include <algorithm>
 #include <cmath>

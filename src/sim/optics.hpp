@@ -1,12 +1,12 @@
-// sensor/sim_optics.hpp - what the camera sees of the membrane under each LED.
+// sim/optics.hpp - what the camera sees of the membrane under each LED.
 #pragma once
 #include <array>
 #include <cmath>
 #include <vector>
 
-#include "sensor/sim_gel.hpp"
-#include "sensor/sim_led.hpp"
-#include "sensor/sim_raster.hpp"
+#include "sim/gel.hpp"
+#include "sim/led.hpp"
+#include "sim/raster.hpp"
 
 namespace vkfuse::sim {
 

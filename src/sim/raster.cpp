@@ -1,5 +1,5 @@
 // Box-filter Gaussian approximation for the simulator's rasters.
-#include "sensor/sim_raster.hpp"
+#include "sim/raster.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// sensor/sim_raster.hpp - the simulator's unit of work: one float value per
+// sim/raster.hpp - the simulator's unit of work: one float value per
 // pixel of the camera grid, and the camera grid itself in millimetres.
 #pragma once
 #include <cstddef>

@@ -1,5 +1,5 @@
-// The catalogue of built-in objects and their sampling (sensor/sim_relief.hpp).
-#include "sensor/sim_relief.hpp"
+// The catalogue of built-in objects and their sampling (sim/relief.hpp).
+#include "sim/relief.hpp"
 
 #include <functional>
 #include <utility>

@@ -1,4 +1,4 @@
-// sensor/sim_relief.hpp - the objects the simulated DIGIT can be pressed
+// sim/relief.hpp - the objects the simulated DIGIT can be pressed
 // with: each a height field of the face that touches the gel.
 #pragma once
 #include <memory>
@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sensor/sim_raster.hpp"
+#include "sim/raster.hpp"
 
 namespace vkfuse::sim {
 

@@ -1,4 +1,4 @@
-// sensor/sim_rng.hpp - the simulator's noise source: a counter-based stream
+// sim/rng.hpp - the simulator's noise source: a counter-based stream
 // per (seed, frame), so a frame's noise depends on nothing but those two and
 // frames can be rendered in any order with identical results.
 #pragma once

@@ -1,10 +1,10 @@
-// Object -> gel -> per-LED images (sensor/sim_scene.hpp).
-#include "sensor/sim_scene.hpp"
+// Object -> gel -> per-LED images (sim/scene.hpp).
+#include "sim/scene.hpp"
 
 #include <stdexcept>
 
-#include "sensor/sim_gel.hpp"
-#include "sensor/sim_relief.hpp"
+#include "sim/gel.hpp"
+#include "sim/relief.hpp"
 
 namespace vkfuse::sim {
 

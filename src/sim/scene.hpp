@@ -1,9 +1,9 @@
-// sensor/sim_scene.hpp - an object pressed into the gel, as the camera sees
+// sim/scene.hpp - an object pressed into the gel, as the camera sees
 // it under each LED: everything about a frame that does not change per frame.
 #pragma once
 #include <string>
 
-#include "sensor/sim_optics.hpp"
+#include "sim/optics.hpp"
 
 namespace vkfuse::sim {
 

@@ -1,9 +1,9 @@
-// Shadows cast on the membrane by its own relief (sensor/sim_optics.hpp).
+// Shadows cast on the membrane by its own relief (sim/optics.hpp).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "sensor/sim_optics.hpp"
+#include "sim/optics.hpp"
 
 namespace vkfuse::sim {
 namespace {

@@ -1,4 +1,4 @@
-// sensor/sim_shapes.hpp - small 2-D shape helpers the objects' height fields
+// sim/shapes.hpp - small 2-D shape helpers the objects' height fields
 // are built from: signed distances (negative inside) and smooth profiles.
 #pragma once
 #include <algorithm>

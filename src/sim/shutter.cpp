@@ -1,9 +1,9 @@
-// LED timeline and rolling shutter (sensor/sim_shutter.hpp).
-#include "sensor/sim_shutter.hpp"
+// LED timeline and rolling shutter (sim/shutter.hpp).
+#include "sim/shutter.hpp"
 
 #include <algorithm>
 
-#include "sensor/sim_led.hpp"
+#include "sim/led.hpp"
 
 namespace vkfuse::sim {
 namespace {

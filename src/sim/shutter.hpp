@@ -1,4 +1,4 @@
-// sensor/sim_shutter.hpp - when light reaches which row: the LED switching
+// sim/shutter.hpp - when light reaches which row: the LED switching
 // timeline and the rolling shutter that samples it.
 #pragma once
 #include <array>

@@ -1,11 +1,11 @@
-// Solid objects with plain faces (sensor/sim_relief.hpp): a ball, the top of a
+// Solid objects with plain faces (sim/relief.hpp): a ball, the top of a
 // 2x2 LEGO brick with its studs, and a hex nut. Standard dimensions in mm.
 #include <cmath>
 #include <vector>
 
-#include "sensor/sim_glyphs.hpp"
-#include "sensor/sim_relief.hpp"
-#include "sensor/sim_shapes.hpp"
+#include "sim/glyphs.hpp"
+#include "sim/relief.hpp"
+#include "sim/shapes.hpp"
 
 namespace vkfuse::sim {
 namespace {

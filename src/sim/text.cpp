@@ -1,10 +1,10 @@
-// Embossed text (sensor/sim_relief.hpp): "DIGIT" in 5 mm capitals raised
+// Embossed text (sim/relief.hpp): "DIGIT" in 5 mm capitals raised
 // 0.3 mm with rounded strokes, on a plate 17 x 8 mm with rounded corners.
 #include <cmath>
 
-#include "sensor/sim_glyphs.hpp"
-#include "sensor/sim_relief.hpp"
-#include "sensor/sim_shapes.hpp"
+#include "sim/glyphs.hpp"
+#include "sim/relief.hpp"
+#include "sim/shapes.hpp"
 
 namespace vkfuse::sim {
 namespace {

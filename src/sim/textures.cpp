@@ -1,10 +1,10 @@
-// Objects whose face is a fine periodic texture (sensor/sim_relief.hpp): a
+// Objects whose face is a fine periodic texture (sim/relief.hpp): a
 // screw's thread, the hooks of velcro, the teeth of a file.
 #include <cmath>
 #include <numbers>
 
-#include "sensor/sim_relief.hpp"
-#include "sensor/sim_shapes.hpp"
+#include "sim/relief.hpp"
+#include "sim/shapes.hpp"
 
 namespace vkfuse::sim {
 namespace {
