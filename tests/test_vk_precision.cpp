@@ -137,7 +137,7 @@ TEST_F(VulkanPrecision, OneFilterPassWithinAFewUlps) {
     const Image f32 = convert<float>(frame);
     for (Context* context : filter_arithmetic_contexts())
     for (const FilterCase& fc : kFilterCases) {
-        const std::string arithmetic = to_string(context->filter_arithmetic());
+        const std::string arithmetic(to_string(context->filter_arithmetic()));
         const FusionSpec spec = one_level(fc.wavelet, fc.mode);
         SCOPED_TRACE(name_of(spec) + ", " + arithmetic);
         PlanConfig cfg;
@@ -179,7 +179,7 @@ TEST_F(VulkanPrecision, FeedbackDrift) {
     const ImageD frame = upper_binade_frame(h, w);
     for (Context* context : filter_arithmetic_contexts())
     for (const Case& c : cases) {
-        const std::string arithmetic = to_string(context->filter_arithmetic());
+        const std::string arithmetic(to_string(context->filter_arithmetic()));
         const FusionSpec spec = one_level(c.wavelet, c.mode);
         SCOPED_TRACE(name_of(spec) + ", " + arithmetic);
         PlanConfig cfg;

@@ -23,15 +23,6 @@ Context& shared_context() {
     return ctx;
 }
 
-std::string to_string(FilterArithmetic a) {
-    switch (a) {
-        case FilterArithmetic::Auto: return "auto";
-        case FilterArithmetic::Float64: return "float64";
-        case FilterArithmetic::CompensatedFloat32: return "compensated float32";
-    }
-    return "?";
-}
-
 std::vector<Context*> filter_arithmetic_contexts() {
     Context& shared = shared_context();
     const bool shared_is_float64 = shared.filter_arithmetic() == FilterArithmetic::Float64;

@@ -25,7 +25,6 @@ ContextOptions validated_options();
 // first, then, where the device also offers the other one, a context using it
 // (created on first use), so the path a GPU takes is tested on lavapipe too.
 std::vector<Context*> filter_arithmetic_contexts();
-std::string to_string(FilterArithmetic a);
 
 class VulkanTest : public ::testing::Test {
 protected:

@@ -39,7 +39,7 @@ void print_auto_choice() {
         Context context;
         const DeviceInfo& d = context.device();
         std::printf("--backend auto uses device [%d] %s, wavelet filters accumulating in %s\n", d.index, d.name.c_str(),
-                    context.filter_arithmetic() == FilterArithmetic::Float64 ? "float64" : "compensated float32");
+                    to_string(context.filter_arithmetic()).data());
     } catch (const Error& e) {
         if (e.kind() != ErrorKind::Device) throw;
         std::printf("--backend auto uses the CPU reference path (%s)\n", e.what());

@@ -4,6 +4,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vkfuse {
@@ -32,6 +33,7 @@ enum class FilterArithmetic {
     Float64,             // a double accumulator (needs DeviceInfo::float64)
     CompensatedFloat32,  // Dot2: a float sum and its error term (any device)
 };
+std::string_view to_string(FilterArithmetic);  // "auto", "float64", "compensated float32"
 
 struct ContextOptions {
     int device_index = -1;    // -1: the best usable device (discrete > integrated > cpu)

@@ -123,9 +123,9 @@ void Context::Impl::choose_device(int index) {
 }
 
 // Auto takes doubles where they are native vector lanes: on a CPU device one
-// double fma per tap is cheaper than Dot2's ten float operations (measured on
-// lavapipe: the wavelet's forward passes in 60 % of the time). A GPU's double
-// rate is often a small fraction of its float rate, so GPUs keep Dot2.
+// double fma per tap is cheaper than Dot2's ten float operations
+// (docs/architecture.md has the measurement). A GPU's double rate is often a
+// small fraction of its float rate, so GPUs keep Dot2.
 void Context::Impl::choose_filter_arithmetic(FilterArithmetic wanted) {
     if (wanted == FilterArithmetic::Float64 && !info.float64)
         throw Error(ErrorKind::Device, info.name + ": float64 filter arithmetic asked for, but the device has no "
@@ -271,6 +271,15 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>(o
 Context::~Context() = default;
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
+std::string_view to_string(FilterArithmetic a) {
+    switch (a) {
+        case FilterArithmetic::Auto: return "auto";
+        case FilterArithmetic::Float64: return "float64";
+        case FilterArithmetic::CompensatedFloat32: return "compensated float32";
+    }
+    return "?";
+}
+
 const DeviceInfo& Context::device() const { return impl_->info; }
 FilterArithmetic Context::filter_arithmetic() const { return impl_->filter_arithmetic; }
 std::uint64_t Context::validation_message_count() const { return impl_->validation_messages.load(); }

@@ -70,8 +70,8 @@ protected:
         const Image first = structured_frame(kHeight, kWidth, 1, 17);
         for (Context* context : contexts)
         for (const auto& [spec, K] : runs) {
-            const std::string what = "gpu feedback " + describe(spec) + " K=" + std::to_string(K) +
-                                     (spec.method == Method::Wavelet ? ", " + to_string(context->filter_arithmetic()) : "");
+            std::string what = "gpu feedback " + describe(spec) + " K=" + std::to_string(K);
+            if (spec.method == Method::Wavelet) what += ", " + std::string(to_string(context->filter_arithmetic()));
             SCOPED_TRACE(what);
             PlanConfig cfg{spec, kHeight, kWidth, 1, K, 1};
             cfg.want_metrics = false;
