@@ -34,9 +34,11 @@ bool parse_dimension(std::string_view text, int& out) {
 
 std::string_view to_string(Backend b) { return b == Backend::Cpu ? "cpu" : "vulkan"; }
 
+bool MethodVariant::has_wavelet() const { return core::method_info(method).uses_wavelet; }
+
 std::string label(const MethodVariant& m) {
     std::string out(vkfuse::to_string(m.method));
-    if (core::method_info(m.method).uses_wavelet) out += "/" + std::string(vkfuse::to_string(m.wavelet));
+    if (m.has_wavelet()) out += "/" + std::string(vkfuse::to_string(m.wavelet));
     return out;
 }
 

@@ -16,11 +16,12 @@ enum class Backend { Cpu, Vulkan };
 // never in the default subset and is reported against the same reference.
 using vkfuse::Precision;
 
-// A fusion method, and for Method::Wavelet the wavelet family.
+// A fusion method, and for a method that uses one (Method::Wavelet) the wavelet family.
 struct MethodVariant {
     Method method = Method::Wavelet;
-    Wavelet wavelet = Wavelet::Bior44;  // ignored unless method == Wavelet
+    Wavelet wavelet = Wavelet::Bior44;  // ignored unless has_wavelet()
     bool operator==(const MethodVariant&) const = default;
+    bool has_wavelet() const;  // the method's row uses a wavelet (core/method_table.hpp)
 };
 
 struct Size {

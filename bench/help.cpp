@@ -5,7 +5,7 @@
 namespace vkfuse::bench {
 
 std::string help_text() {
-    std::string text = R"(usage: vkfuse-bench [--quick | --full] [filters] [--json FILE.json] [--plot FILE.svg] [options]
+    return core::with_method_names(R"(usage: vkfuse-bench [--quick | --full] [filters] [--json FILE.json] [--plot FILE.svg] [options]
 
 Run time against error of vkfuse's fusion (+ sharpness, contrast and background
 difference, fused image read back) per cell of the matrix
@@ -98,10 +98,8 @@ How it measures:
   flops at the multiply-add rate, its dispatches) at these probed costs.
 
 Exit status: 0 done, 1 a run-time failure, 2 bad command line (one-line message).
-)";
-    const std::string key = "{methods}";
-    text.replace(text.find(key), key.size(), core::method_names(", "));  // the method table's names
-    return text;
+)",
+                                   ", ");
 }
 
 }  // namespace vkfuse::bench

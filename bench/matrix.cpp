@@ -78,7 +78,7 @@ std::vector<MethodVariant> filter_methods(const Options& o, const std::vector<Me
     std::vector<MethodVariant> out;
     for (const auto& m : all_method_variants()) {
         const bool method_ok = methods.empty() ? contains(scope, m) : contains(methods, m.method);
-        const bool wavelet_ok = m.method != Method::Wavelet || o.wavelets.empty() || contains(o.wavelets, m.wavelet);
+        const bool wavelet_ok = !m.has_wavelet() || o.wavelets.empty() || contains(o.wavelets, m.wavelet);
         if (method_ok && wavelet_ok) out.push_back(m);
     }
     return out;

@@ -22,7 +22,7 @@ double number_field(const json::Value& v, std::string_view key) {
 std::vector<std::string> peer_command(std::vector<std::string> argv, const Cell& cell, const std::filesystem::path& dir,
                                       int frames, double max_seconds, int runs) {
     argv.insert(argv.end(), {"--method", std::string(to_string(cell.method.method))});
-    if (cell.method.method == Method::Wavelet) argv.insert(argv.end(), {"--wavelet", std::string(to_string(cell.method.wavelet))});
+    if (cell.method.has_wavelet()) argv.insert(argv.end(), {"--wavelet", std::string(to_string(cell.method.wavelet))});
     if (cell.levels > 0) argv.insert(argv.end(), {"--levels", std::to_string(cell.levels)});
     argv.insert(argv.end(), {"--runs", std::to_string(runs), "--max-seconds", std::to_string(max_seconds),
                              "--background", (dir / "background.npy").string(), "--out", (dir / "fused.npy").string()});

@@ -47,9 +47,8 @@ std::optional<std::string> text_if(bool present, std::string_view text) {
 
 void add_identity(Members& o, const CellResult& r) {
     const Cell& c = r.cell;
-    const bool wavelet = c.method.method == Method::Wavelet;
     o.add("method", Value(std::string(to_string(c.method.method))));
-    o.add("wavelet", text_if(wavelet, to_string(c.method.wavelet)));
+    o.add("wavelet", text_if(c.method.has_wavelet(), to_string(c.method.wavelet)));
     o.add("levels", c.levels > 0 ? std::optional<double>(c.levels) : std::nullopt);
     o.add("backend", Value(std::string(to_string(c.backend)))).add("device", Value(r.device));
     o.add("driver", r.driver.empty() ? Value(nullptr) : Value(r.driver));

@@ -74,15 +74,6 @@ bool wants_help(std::span<const std::string> argv) {
     return false;
 }
 
-// Option help names the fusion methods as "{methods}": the method table's
-// names, so a method's row is the only place that lists it.
-std::string expand_names(std::string_view help) {
-    std::string out(help);
-    const std::string_view key = "{methods}";
-    if (const std::size_t at = out.find(key); at != std::string::npos) out.replace(at, key.size(), core::method_names());
-    return out;
-}
-
 std::string help_text(const CommandSpec& spec) {
     std::string text = "Usage: " + std::string(spec.usage) + "\n\n" + std::string(spec.details) + "\n\nOptions:\n";
     auto label = [](const OptionSpec& o) {
@@ -94,7 +85,7 @@ std::string help_text(const CommandSpec& spec) {
     auto line = [&](const std::string& left, std::string_view help) {
         return "  " + left + std::string(width - left.size() + 2, ' ') + std::string(help) + "\n";
     };
-    for (const OptionSpec& o : spec.options) text += line(label(o), expand_names(o.help));
+    for (const OptionSpec& o : spec.options) text += line(label(o), core::with_method_names(o.help));  // "{methods}"
     text += line("-h, --help", "show this help and exit");
     return text + "\nExample:\n  " + std::string(spec.example) + "\n";
 }

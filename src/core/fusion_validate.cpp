@@ -1,7 +1,10 @@
 // validate(): every precondition of a fusion, checked before any work, with a
-// one-line message that names the offending option (include/vkfuse/fusion.hpp).
+// one-line message that names the offending option (include/vkfuse/fusion.hpp);
+// and the shape and frame checks every plan and reference share
+// (core/validate_shape.hpp).
 #include <string>
 
+#include "core/check_finite.hpp"
 #include "core/method_table.hpp"
 #include "core/validate_shape.hpp"
 #include "vkfuse/error.hpp"
@@ -13,6 +16,8 @@ namespace {
 [[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::InvalidArgument, message); }
 
 std::string size_text(int height, int width) { return std::to_string(height) + "x" + std::to_string(width); }
+
+std::string shape_text(const ImageD& f) { return size_text(f.height, f.width) + "x" + std::to_string(f.channels); }
 
 // Side a square image needs for one level: dwt_max_level(n, F) >= 1 <=> n >= 2 (F - 1).
 int min_side_for_one_level(Wavelet w) { return 2 * (filter_length(w) - 1); }
@@ -54,6 +59,16 @@ void validate_shape(int height, int width, int channels, int frames) {
     if (channels != 1 && channels != 3)
         fail("image channels " + std::to_string(channels) + ": must be 1 (gray) or 3 (RGB)");
     if (frames < 1) fail("frames: need at least 1, got " + std::to_string(frames));
+}
+
+void check_frames(std::span<const ImageD> frames) {
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        const std::string name = "frame " + std::to_string(k + 1);
+        if (!frames[k].same_shape(frames[0]) || frames[k].data.size() != frames[0].pixels() * frames[0].channels)
+            throw Error(ErrorKind::Shape, name + ": shape " + shape_text(frames[k]) + " differs from frame 1's " +
+                                              shape_text(frames[0]));
+        require_finite(frames[k], name);
+    }
 }
 
 }  // namespace core

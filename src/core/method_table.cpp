@@ -18,13 +18,13 @@ constexpr int kMaxWaveletLevels = 31;
 // In enum order: method_table() hands these out as one span.
 const MethodInfo kRows[] = {
     {Method::ChannelSum, "channel-sum", "R from frame 1, G from frame 2, B from frame 3 (K = 3, RGB)", "channel-sum",
-     0, 0, 3, 3, "red, green, blue LED", false, false, fuse_channel_sum, 0, 0, "#1f77b4"},
+     0, 0, 3, 3, "red, green, blue LED", false, fuse_channel_sum, 0, 0, "#1f77b4"},
     {Method::Brovey, "brovey", "each frame weighted by its share of the pixel's sum", "brovey", 0, 0, 0, 0, "",
-     false, false, fuse_brovey, 0, 0, "#ff7f0e"},
+     false, fuse_brovey, 0, 0, "#ff7f0e"},
     {Method::Laplacian, "laplacian", "OpenCV-exact Laplacian pyramids, fused level by level", "a Laplacian pyramid",
-     4, kMaxLaplacianLevels, 0, 0, "31 reach 1x1 from any size", true, false, fuse_laplacian, 1.7, 2.0, "#2ca02c"},
+     4, kMaxLaplacianLevels, 0, 0, "31 reach 1x1 from any size", false, fuse_laplacian, 1.7, 2.0, "#2ca02c"},
     {Method::Wavelet, "wavelet", "PyWavelets' 2-D DWT, bands fused by the rules", "a wavelet transform", 3,
-     kMaxWaveletLevels, 0, 0, "no image carries more", true, true, fuse_wavelet, 1.7, 2.0, "#e377c2"},
+     kMaxWaveletLevels, 0, 0, "no image carries more", true, fuse_wavelet, 1.7, 2.0, "#e377c2"},
 };
 
 }  // namespace
@@ -41,6 +41,14 @@ const MethodInfo& method_info(Method m) {
 }
 
 std::span<const MethodInfo> method_table() { return kRows; }
+
+std::string with_method_names(std::string_view help, std::string_view last_separator) {
+    std::string out(help);
+    const std::string_view key = "{methods}";
+    if (const std::size_t at = out.find(key); at != std::string::npos)
+        out.replace(at, key.size(), method_names(last_separator));
+    return out;
+}
 
 std::string method_names(std::string_view last_separator) {
     std::string out;

@@ -29,7 +29,6 @@ struct MethodInfo {
     int exact_channels;  // 0: 1 or 3
     // Why the limits above hold, for messages ("red, green, blue LED").
     std::string_view limits_why;
-    bool uses_rules;     // the base and detail rules apply
     bool uses_wavelet;   // the wavelet and mode apply
     // The double-precision reference (docs/spec.md), on frames fuse_reference
     // has validated: one shape, finite, K and C within the limits above.
@@ -45,5 +44,8 @@ const MethodInfo& method_info(Method m);
 std::span<const MethodInfo> method_table();
 // "channel-sum, brovey, laplacian or wavelet": the names for help text.
 std::string method_names(std::string_view last_separator = " or ");
+// Help text with "{methods}" (if present) replaced by method_names(last_separator),
+// so a method's row is the only place that lists it.
+std::string with_method_names(std::string_view help, std::string_view last_separator = " or ");
 
 }  // namespace vkfuse::core

@@ -22,17 +22,18 @@ constexpr Entry kShaders[] = {
 };
 #undef VKFUSE_SHADER
 
-}  // namespace
-
-bool has_shader(const std::string& name) {
+const Entry* find(const std::string& name) {
     for (const auto& e : kShaders)
-        if (name == e.name) return true;
-    return false;
+        if (name == e.name) return &e;
+    return nullptr;
 }
 
+}  // namespace
+
+bool has_shader(const std::string& name) { return find(name) != nullptr; }
+
 std::span<const std::uint32_t> shader_spirv(const std::string& name) {
-    for (const auto& e : kShaders)
-        if (name == e.name) return {e.words, e.count};
+    if (const Entry* e = find(name)) return {e->words, e->count};
     throw Error(ErrorKind::Device, "internal: no embedded shader named " + name);
 }
 
