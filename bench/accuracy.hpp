@@ -1,12 +1,34 @@
 // Error of a result against the reference: the fused image sample by sample,
-// each metric relative to its reference value.
 #pragma once
 #include <cstddef>
+#include <vector>
 
-#include "vkfuse/image.hpp"
-#include "vkfuse/metrics.hpp"
+#include "inputs.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/core/metrics.hpp"
 
 namespace vkfuse::bench {
+
+// What the double-precision CPU reference says a sensor's cycle must give:
+// the truth every backend's and peer's error is measured against.
+
+struct Expected {
+    int sensor = 0;
+    ImageD fused;
+    Metrics metrics;  // with background_diff
+};
+
+// The sensors whose results are compared: the first, the last and up to two
+// evenly between (checking every one of 64 sensors would cost more reference
+// time than the benchmark itself; these catch a wrong sensor offset).
+std::vector<int> checked_sensors(int sensors);
+
+// Reference results for checked_sensors(in.sensors()), each scene computed once.
+std::vector<Expected> expected_results(const Inputs& in, const FusionSpec& spec);
+
+// Error of a result against the reference: the fused image sample by sample,
+// each metric relative to its reference value.
 
 inline constexpr double kFusedTolerance = 1e-5;  // docs/spec.md: Vulkan fp32 vs reference
 

@@ -4,7 +4,7 @@
 #include <charconv>
 
 #include "core/method_table.hpp"
-#include "usage_error.hpp"
+#include "options.hpp"
 
 namespace vkfuse::bench {
 namespace {

@@ -4,14 +4,14 @@
 #include <string_view>
 #include <vector>
 
-#include "vkfuse/fusion.hpp"
-#include "vkfuse/plan.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::bench {
 
 enum class Backend { Cpu, Vulkan };
 
-// The plan's storage precision (vkfuse/plan.hpp): fp32, or fp16 storage
+// The plan's storage precision (vkfuse/vk/plan.hpp): fp32, or fp16 storage
 // (docs/spec.md's optional reduced-precision mode), a Vulkan-only axis that is
 // never in the default subset and is reported against the same reference.
 using vkfuse::Precision;

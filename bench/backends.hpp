@@ -5,10 +5,10 @@
 #pragma once
 #include <vector>
 
-#include "expected.hpp"
+#include "accuracy.hpp"
 #include "inputs.hpp"
 #include "result.hpp"
-#include "vkfuse/context.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse::bench {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "io/json_value.hpp"
-#include "report_json.hpp"
+#include "report.hpp"
 
 namespace {
 

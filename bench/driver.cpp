@@ -7,19 +7,19 @@
 #include <thread>
 
 #include "backends.hpp"
-#include "host_load.hpp"
+#include "timing.hpp"
 #include "matrix.hpp"
-#include "memory.hpp"
+#include "matrix.hpp"
 #include "peer.hpp"
-#include "report_json.hpp"
-#include "report_summary.hpp"
-#include "report_svg.hpp"
-#include "report_table.hpp"
-#include "usage_error.hpp"
+#include "report.hpp"
+#include "report.hpp"
+#include "report.hpp"
+#include "report.hpp"
+#include "options.hpp"
 #include "vk/copy_bandwidth.hpp"
 #include "floor_model.hpp"
 #include "vk/kernel_access.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::bench {
 namespace {

@@ -4,7 +4,7 @@
 // (vk/kernel_access.hpp). floor_ms / median_ms says how close a cell runs to
 // what the device allows a pipeline of that method.
 #pragma once
-#include "cell.hpp"
+#include "result.hpp"
 #include "vk/kernel_access.hpp"
 
 namespace vkfuse::bench {

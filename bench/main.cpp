@@ -9,7 +9,7 @@
 #include "driver.hpp"
 #include "io/interrupt_cleanup.hpp"
 #include "options.hpp"
-#include "usage_error.hpp"
+#include "options.hpp"
 
 int main(int argc, char** argv) {
     using namespace vkfuse::bench;

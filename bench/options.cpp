@@ -4,8 +4,8 @@
 #include <functional>
 #include <map>
 
-#include "usage_error.hpp"
-#include "vkfuse/error.hpp"
+#include "options.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::bench {
 namespace {

@@ -1,11 +1,14 @@
 // vkfuse-bench's command line: which part of the matrix to run and what to write.
 #pragma once
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "axes.hpp"
 
 namespace vkfuse::bench {
+
+// vkfuse-bench's command line: which part of the matrix to run and what to write.
 
 enum class Scope {
     Default,  // a subset that finishes in a few minutes on lavapipe
@@ -43,5 +46,12 @@ struct Options {
 Options parse_options(const std::vector<std::string>& args);
 
 std::string help_text();
+
+// A bad command line: main() prints the message on one line and exits 2.
+
+class UsageError : public std::runtime_error {
+public:
+    explicit UsageError(const std::string& message) : std::runtime_error(message) {}
+};
 
 }  // namespace vkfuse::bench

@@ -5,9 +5,9 @@
 
 #include "io/json_value.hpp"
 #include "process.hpp"
-#include "temp_dir.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "process.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::bench {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "cell.hpp"
-#include "expected.hpp"
+#include "result.hpp"
+#include "accuracy.hpp"
 #include "inputs.hpp"
 #include "result.hpp"
 

@@ -1,17 +1,21 @@
 #include "process.hpp"
 
+#include <array>
+#include <cerrno>
+#include <cstdlib>
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
+#include <stdexcept>
+#include <string>
 #include <sys/wait.h>
+#include <system_error>
 #include <unistd.h>
-
-#include <array>
-#include <cerrno>
 
 extern char** environ;
 
 namespace vkfuse::bench {
+
 namespace {
 
 // Both ends of a pipe, closed on scope exit.
@@ -89,6 +93,17 @@ std::string last_line(const std::string& text) {
     if (end == std::string::npos) return "";
     const std::size_t start = text.rfind('\n', end);
     return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
+}
+
+TempDir::TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "vkfuse-bench-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary directory in " + pattern);
+    path_ = pattern;
+}
+
+TempDir::~TempDir() {
+    std::error_code ignored;  // nothing useful to do about a failed cleanup in a destructor
+    std::filesystem::remove_all(path_, ignored);
 }
 
 }  // namespace vkfuse::bench

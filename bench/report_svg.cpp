@@ -1,4 +1,4 @@
-#include "report_svg.hpp"
+#include "report.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 
 namespace vkfuse::bench {
+
 namespace {
 
 double time_ms(const std::function<void()>& f) {
@@ -51,6 +53,13 @@ Timing time_cycles(const RunPolicy& policy, const std::function<void()>& cycle,
     t.min_ms = *std::min_element(ms.begin(), ms.end());
     t.max_ms = *std::max_element(ms.begin(), ms.end());
     return t;
+}
+
+double load_average() {
+    std::ifstream in("/proc/loadavg");
+    double one_minute = -1;
+    if (!(in >> one_minute)) return -1;
+    return one_minute;
 }
 
 }  // namespace vkfuse::bench

@@ -5,6 +5,8 @@
 
 namespace vkfuse::bench {
 
+// Timing a cycle: warm-up, then timed repeats, summarised as median/min/max.
+
 struct RunPolicy {
     int warmup = 2;
     int runs = 20;
@@ -30,5 +32,11 @@ double median(std::vector<double> values);
 // each timed run, outside the timed interval (for reading profiles).
 Timing time_cycles(const RunPolicy& policy, const std::function<void()>& cycle,
                    const std::function<void()>& after_run = {});
+
+// How busy the host is: timings taken while other processes run are slower,
+// and a report should say so rather than let the numbers mislead.
+
+// The 1-minute load average from /proc/loadavg, or -1 where it cannot be read.
+double load_average();
 
 }  // namespace vkfuse::bench

@@ -13,8 +13,8 @@
 #include "fusion_options.hpp"
 #include "fuzz_targets.hpp"
 #include "run_options.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::fuzz {
 namespace {

@@ -3,9 +3,9 @@
 #include <string>
 
 #include "fuzz_targets.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/image.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::fuzz {
 

@@ -14,7 +14,7 @@
 
 #include "core/plane.hpp"
 #include "test_support.hpp"
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::test {
 

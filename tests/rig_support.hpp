@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "sensor_doubles.hpp"
-#include "vkfuse/rig.hpp"
+#include "vkfuse/rig/rig.hpp"
 
 namespace vkfuse::test {
 

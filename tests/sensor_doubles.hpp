@@ -7,7 +7,7 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::test {
 

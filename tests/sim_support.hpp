@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "vkfuse/image.hpp"
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::test {
 

@@ -8,7 +8,7 @@
 #include "cli_runner.hpp"
 #include "lose_device.hpp"
 #include "test_support.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -10,7 +10,7 @@
 #include "cli_runner.hpp"
 #include "npy_bytes.hpp"
 #include "test_support.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

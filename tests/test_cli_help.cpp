@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.hpp"
+#include "core/method_table.hpp"
 
 namespace vkfuse::test {
 namespace {
@@ -24,6 +25,19 @@ TEST(CliHelp, FuseListsEveryOptionWithItsDefault) {
                 {"--method M", "--levels L", "laplacian 4, wavelet 3", "--wavelet W", "default bior4.4", "--mode MODE",
                  "default periodization", "--base-rule R", "default mean", "--detail-rule R", "default max-abs",
                  "--backend B", "default auto", "-o, --output OUT", "-h, --help"});
+}
+
+// Every command that takes --method says what each method does, from its row.
+TEST(CliHelp, MethodsSectionHasEveryRowsSummary) {
+    for (const char* command : {"fuse", "run"}) {
+        std::vector<std::string> mentions{"\nMethods:\n"};
+        for (const core::MethodInfo& m : core::method_table())
+            mentions.push_back("  " + std::string(m.name) + " ");
+        for (const core::MethodInfo& m : core::method_table()) mentions.push_back(std::string(m.summary) + "\n");
+        expect_help({command, "--help"}, mentions);
+    }
+    CliResult metrics = run_cli({"metrics", "--help"});
+    EXPECT_EQ(metrics.out.find("Methods:"), std::string::npos) << metrics.out;
 }
 
 TEST(CliHelp, MetricsAndInfo) {

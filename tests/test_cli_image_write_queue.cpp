@@ -5,8 +5,8 @@
 
 #include "image_write_queue.hpp"
 #include "temp_dir.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -18,7 +18,7 @@
 #include "io/json_value.hpp"
 #include "io_test_files.hpp"
 #include "test_support.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

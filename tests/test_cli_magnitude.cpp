@@ -14,7 +14,7 @@
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
-#include "vkfuse/io.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/io.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

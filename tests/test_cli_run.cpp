@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "cli_runner.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

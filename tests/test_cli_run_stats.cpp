@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "run_stats.hpp"
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.hpp"
-#include "vkfuse/dataset.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "expect_error.hpp"
 #include "test_support.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

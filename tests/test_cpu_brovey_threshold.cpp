@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -5,7 +5,7 @@
 #include <thread>
 #include <vector>
 
-#include "vkfuse/clock.hpp"
+#include "vkfuse/sensor/clock.hpp"
 
 namespace vkfuse {
 namespace {

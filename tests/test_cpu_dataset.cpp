@@ -8,7 +8,7 @@
 #include "expect_error.hpp"
 #include "sensor_doubles.hpp"
 #include "temp_dir.hpp"
-#include "vkfuse/dataset.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse::test {
 namespace {

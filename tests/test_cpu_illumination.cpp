@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "expect_error.hpp"
-#include "vkfuse/illumination.hpp"
+#include "vkfuse/sensor/illumination.hpp"
 
 namespace vkfuse {
 namespace {

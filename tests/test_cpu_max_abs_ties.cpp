@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -10,8 +10,8 @@
 #include "core/compensated_sum.hpp"
 #include "peer_file.hpp"
 #include "test_support.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse {
 namespace {

@@ -6,7 +6,7 @@
 #include "sim/calibration.hpp"
 #include "sim_support.hpp"
 #include "test_support.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse {
 namespace {

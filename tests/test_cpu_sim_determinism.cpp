@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sim_support.hpp"
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse {
 namespace {

@@ -13,7 +13,7 @@
 #include <cstdio>
 
 #include "sim_support.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse {
 namespace {

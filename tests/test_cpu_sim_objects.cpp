@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sim_support.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse {
 namespace {

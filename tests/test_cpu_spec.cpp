@@ -1,10 +1,10 @@
-// FusionSpec names, parsing and validate() messages (include/vkfuse/fusion.hpp).
+// FusionSpec names, parsing and validate() messages (include/vkfuse/core/fusion.hpp).
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "vkfuse/error.hpp"
-#include "vkfuse/fusion.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/fusion.hpp"
 
 namespace vkfuse {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "expect_error.hpp"
 #include "sensor_doubles.hpp"
-#include "vkfuse/switching.hpp"
+#include "vkfuse/sensor/switching.hpp"
 
 namespace vkfuse::test {
 namespace {

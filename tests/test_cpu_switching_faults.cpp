@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "sensor_doubles.hpp"
-#include "vkfuse/switching.hpp"
+#include "vkfuse/sensor/switching.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -17,8 +17,8 @@
 #include "io/memory_available.hpp"
 #include "io_test_files.hpp"
 #include "temp_dir.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

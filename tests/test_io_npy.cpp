@@ -12,8 +12,8 @@
 #include "expect_error.hpp"
 #include "npy_bytes.hpp"
 #include "temp_dir.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

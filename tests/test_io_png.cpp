@@ -10,8 +10,8 @@
 #include "expect_error.hpp"
 #include "temp_dir.hpp"
 #include "test_support.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
 namespace {

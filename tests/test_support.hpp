@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/fusion.hpp"
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::test {
 

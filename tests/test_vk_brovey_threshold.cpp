@@ -15,7 +15,7 @@
 
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

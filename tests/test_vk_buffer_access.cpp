@@ -12,7 +12,7 @@
 
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/background.hpp"
+#include "vkfuse/rig/background.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -13,7 +13,7 @@
 #include "expect_error.hpp"
 #include "lose_device.hpp"
 #include "vk/api.hpp"
-#include "vkfuse/plan.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::test {
 namespace {

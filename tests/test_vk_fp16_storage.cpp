@@ -13,8 +13,8 @@
 #include "expect_error.hpp"
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

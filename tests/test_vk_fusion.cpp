@@ -11,8 +11,8 @@
 
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

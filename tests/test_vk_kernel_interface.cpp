@@ -5,7 +5,7 @@
 
 #include "vk/kernel_interface.hpp"
 #include "vk/shader_registry.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::test {
 namespace {

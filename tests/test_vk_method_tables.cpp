@@ -9,7 +9,7 @@
 
 #include "core/method_table.hpp"
 #include "vk/method_recorders.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/io.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/io.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -7,7 +7,7 @@
 #include "rig_support.hpp"
 #include "temp_dir.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/dataset.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/context.hpp"
-#include "vkfuse/plan.hpp"
+#include "vkfuse/vk/context.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::test {
 

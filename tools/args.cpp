@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/method_table.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {
 namespace {
@@ -85,8 +85,20 @@ std::string help_text(const CommandSpec& spec) {
     auto line = [&](const std::string& left, std::string_view help) {
         return "  " + left + std::string(width - left.size() + 2, ' ') + std::string(help) + "\n";
     };
-    for (const OptionSpec& o : spec.options) text += line(label(o), core::with_method_names(o.help));  // "{methods}"
+    bool names_methods = false;
+    for (const OptionSpec& o : spec.options) {
+        text += line(label(o), core::with_method_names(o.help));  // "{methods}"
+        names_methods = names_methods || o.help.find("{methods}") != std::string_view::npos;
+    }
     text += line("-h, --help", "show this help and exit");
+    if (names_methods) {  // a command that takes a method says what each one does
+        text += "\nMethods:\n";
+        std::size_t name_width = 0;
+        for (const core::MethodInfo& m : core::method_table()) name_width = std::max(name_width, m.name.size());
+        for (const core::MethodInfo& m : core::method_table())
+            text += "  " + std::string(m.name) + std::string(name_width - m.name.size() + 2, ' ') +
+                    std::string(m.summary) + "\n";
+    }
     return text + "\nExample:\n  " + std::string(spec.example) + "\n";
 }
 

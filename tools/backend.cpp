@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {
 

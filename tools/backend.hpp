@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "args.hpp"
-#include "vkfuse/context.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse::cli {
 

@@ -9,10 +9,10 @@
 #include "inputs.hpp"
 #include "io/interrupt_cleanup.hpp"
 #include "memory_check.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
-#include "vkfuse/plan.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
+#include "vkfuse/vk/plan.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -12,9 +12,9 @@
 #include "inputs.hpp"
 #include "json.hpp"
 #include "memory_check.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/plan.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/vk/plan.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -17,7 +17,7 @@
 #include "run_stats.hpp"
 #include "staged_directory.hpp"
 #include "stop_signal.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -6,9 +6,9 @@
 #include "progress.hpp"
 #include "staged_directory.hpp"
 #include "stop_signal.hpp"
-#include "vkfuse/dataset.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/sensor/dataset.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -1,7 +1,7 @@
 // fusion_options.hpp - the fusion options `vkfuse fuse` and `vkfuse run` share.
 #pragma once
 #include "args.hpp"
-#include "vkfuse/fusion.hpp"
+#include "vkfuse/core/fusion.hpp"
 
 namespace vkfuse::cli {
 

@@ -1,6 +1,6 @@
 #include "image_write_queue.hpp"
 
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::cli {
 namespace {

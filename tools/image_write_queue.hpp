@@ -15,7 +15,7 @@
 #include <string>
 #include <thread>
 
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::cli {
 

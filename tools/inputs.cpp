@@ -1,7 +1,7 @@
 #include "inputs.hpp"
 
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::cli {
 namespace {

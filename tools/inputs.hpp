@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "io/image_header.hpp"
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::cli {
 

@@ -10,7 +10,7 @@
 
 #include "commands.hpp"
 #include "version.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "backend.hpp"
 #include "io/image_header.hpp"
-#include "vkfuse/fusion.hpp"
+#include "vkfuse/core/fusion.hpp"
 
 namespace vkfuse::cli {
 

@@ -4,8 +4,8 @@
 #include <limits>
 
 #include "fusion_options.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::cli {
 namespace {

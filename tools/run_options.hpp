@@ -5,9 +5,9 @@
 
 #include "args.hpp"
 #include "backend.hpp"
-#include "vkfuse/dataset.hpp"
-#include "vkfuse/fusion.hpp"
-#include "vkfuse/illumination.hpp"
+#include "vkfuse/sensor/dataset.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/sensor/illumination.hpp"
 
 namespace vkfuse::cli {
 

@@ -11,8 +11,8 @@
 
 #include "io/path_component.hpp"
 #include "json.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::cli {
 namespace {

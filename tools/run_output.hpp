@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "image_write_queue.hpp"
-#include "vkfuse/illumination.hpp"
-#include "vkfuse/rig.hpp"
+#include "vkfuse/sensor/illumination.hpp"
+#include "vkfuse/rig/rig.hpp"
 
 namespace vkfuse::cli {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "run_options.hpp"
-#include "vkfuse/rig.hpp"
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/rig/rig.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::cli {
 

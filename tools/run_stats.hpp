@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/rig.hpp"
+#include "vkfuse/rig/rig.hpp"
 
 namespace vkfuse::cli {
 

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <random>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/error.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::core {
 

@@ -3,7 +3,7 @@
 #pragma once
 #include <string>
 
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::core {
 

@@ -1,8 +1,8 @@
-// fuse_reference(): validation, then dispatch to the method (include/vkfuse/reference.hpp).
+// fuse_reference(): validation, then dispatch to the method (include/vkfuse/core/reference.hpp).
 #include "core/method_table.hpp"
 #include "core/validate_shape.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse {
 

@@ -1,12 +1,12 @@
-// FusionSpec names, defaults and validation (include/vkfuse/fusion.hpp).
+// FusionSpec names, defaults and validation (include/vkfuse/core/fusion.hpp).
 #include <algorithm>
 #include <array>
 #include <string>
 #include <utility>
 
 #include "core/method_table.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/fusion.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/fusion.hpp"
 
 namespace vkfuse {
 namespace {

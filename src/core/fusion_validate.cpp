@@ -1,5 +1,5 @@
 // validate(): every precondition of a fusion, checked before any work, with a
-// one-line message that names the offending option (include/vkfuse/fusion.hpp);
+// one-line message that names the offending option (include/vkfuse/core/fusion.hpp);
 // and the shape and frame checks every plan and reference share
 // (core/validate_shape.hpp).
 #include <string>
@@ -7,8 +7,8 @@
 #include "core/check_finite.hpp"
 #include "core/method_table.hpp"
 #include "core/validate_shape.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/fusion.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/fusion.hpp"
 
 namespace vkfuse {
 namespace {

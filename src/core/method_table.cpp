@@ -2,7 +2,7 @@
 #include "core/method_table.hpp"
 
 #include "core/fusion_methods.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::core {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <string_view>
 
-#include "vkfuse/fusion.hpp"
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::core {
 

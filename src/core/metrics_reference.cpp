@@ -6,8 +6,8 @@
 
 #include "core/check_finite.hpp"
 #include "core/compensated_sum.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse {
 namespace {

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::core {
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <span>
 
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::core {
 

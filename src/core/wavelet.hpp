@@ -88,7 +88,7 @@
 #include <vector>
 
 #include "core/plane.hpp"
-#include "vkfuse/fusion.hpp"
+#include "vkfuse/core/fusion.hpp"
 
 namespace vkfuse::core {
 

@@ -11,7 +11,7 @@
 #include "io/io_error.hpp"
 #include "io/npy.hpp"
 #include "io/png.hpp"
-#include "vkfuse/io.hpp"
+#include "vkfuse/core/io.hpp"
 
 namespace vkfuse::io {
 namespace {

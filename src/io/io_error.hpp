@@ -3,7 +3,7 @@
 #include <string>
 #include <system_error>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::io {
 

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <vector>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::io {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::io {
 namespace {

@@ -2,8 +2,8 @@
 #include <map>
 
 #include "rig/hub.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::rig {
 namespace {

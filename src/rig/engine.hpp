@@ -5,10 +5,10 @@
 #include <memory>
 #include <span>
 
-#include "vkfuse/context.hpp"
-#include "vkfuse/image.hpp"
-#include "vkfuse/metrics.hpp"
-#include "vkfuse/plan.hpp"
+#include "vkfuse/vk/context.hpp"
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/core/metrics.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::rig {
 

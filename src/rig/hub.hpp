@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/background.hpp"
-#include "vkfuse/rig.hpp"
+#include "vkfuse/rig/background.hpp"
+#include "vkfuse/rig/rig.hpp"
 
 namespace vkfuse::rig {
 

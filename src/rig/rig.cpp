@@ -1,6 +1,6 @@
 // Rig: capture threads feed a mailbox each; next() fuses whatever the cycle
-// brought with one submit (include/vkfuse/rig.hpp).
-#include "vkfuse/rig.hpp"
+// brought with one submit (include/vkfuse/rig/rig.hpp).
+#include "vkfuse/rig/rig.hpp"
 
 #include <chrono>
 #include <thread>
@@ -8,7 +8,7 @@
 #include "core/deadline.hpp"
 #include "rig/engine.hpp"
 #include "rig/hub.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse {
 namespace {

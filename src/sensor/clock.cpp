@@ -1,11 +1,11 @@
-// Real and virtual clocks (include/vkfuse/clock.hpp).
+// Real and virtual clocks (include/vkfuse/sensor/clock.hpp).
 #include <algorithm>
 #include <chrono>
 #include <mutex>
 #include <thread>
 
 #include "core/deadline.hpp"
-#include "vkfuse/clock.hpp"
+#include "vkfuse/sensor/clock.hpp"
 
 namespace vkfuse {
 namespace {

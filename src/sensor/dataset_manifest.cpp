@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "io/path_component.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::sensor {
 namespace {

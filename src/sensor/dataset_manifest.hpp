@@ -3,7 +3,7 @@
 #include <string>
 
 #include "io/json_value.hpp"
-#include "vkfuse/dataset.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse::sensor {
 

@@ -1,7 +1,7 @@
 // record_dataset(): any sensor, every object under every setting, clean frames only.
-#include "vkfuse/dataset.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/switching.hpp"
+#include "vkfuse/sensor/dataset.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/switching.hpp"
 
 namespace vkfuse {
 

@@ -4,8 +4,8 @@
 #include <map>
 #include <set>
 
-#include "vkfuse/dataset.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/sensor/dataset.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse {
 namespace {

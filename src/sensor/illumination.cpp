@@ -1,11 +1,11 @@
-// LED layouts, illumination settings and their text form (include/vkfuse/illumination.hpp).
+// LED layouts, illumination settings and their text form (include/vkfuse/sensor/illumination.hpp).
 #include <charconv>
 #include <string>
 #include <string_view>
 #include <system_error>
 
-#include "vkfuse/error.hpp"
-#include "vkfuse/illumination.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/illumination.hpp"
 
 namespace vkfuse {
 namespace {

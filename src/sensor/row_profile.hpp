@@ -4,7 +4,7 @@
 #pragma once
 #include <vector>
 
-#include "vkfuse/sensor.hpp"
+#include "vkfuse/sensor/sensor.hpp"
 
 namespace vkfuse::sensor {
 

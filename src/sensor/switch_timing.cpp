@@ -1,5 +1,5 @@
 // measure_switch_timing(): LED latency and rolling-shutter frame span from
-// frame timestamps (include/vkfuse/switching.hpp).
+// frame timestamps (include/vkfuse/sensor/switching.hpp).
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -7,8 +7,8 @@
 #include <string>
 
 #include "sensor/row_profile.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/switching.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/switching.hpp"
 
 namespace vkfuse {
 namespace {

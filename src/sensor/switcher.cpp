@@ -1,5 +1,5 @@
 // Switcher: frames lit entirely by requested settings, judged by timing (a
-// live sensor) or by label (a recorded dataset). See include/vkfuse/switching.hpp.
+// live sensor) or by label (a recorded dataset). See include/vkfuse/sensor/switching.hpp.
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "vkfuse/error.hpp"
-#include "vkfuse/switching.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/switching.hpp"
 
 namespace vkfuse {
 namespace {

@@ -4,8 +4,8 @@
 #pragma once
 #include <array>
 
-#include "sim/led.hpp"
-#include "vkfuse/image.hpp"
+#include "sim/lighting.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::sim {
 

@@ -1,14 +1,51 @@
-// sim/camera.hpp - the image sensor: integrates each row's light,
-// adds shot and read noise, amplifies, quantises to 8 bits and clips.
+// sim/camera.hpp - the DIGIT's camera: a rolling shutter exposing rows while
+// the LEDs switch, and the sensor's noise.
 #pragma once
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
-#include "sim/optics.hpp"
-#include "sim/rng.hpp"
+#include "sim/lighting.hpp"
+#include "vkfuse/sensor/illumination.hpp"
 
 namespace vkfuse::sim {
+
+// The simulator's noise source: a counter-based stream per (seed, frame), so
+// a frame's noise depends on nothing but those two and frames can be rendered
+// in any order with identical results.
+
+class NoiseStream {
+public:
+    NoiseStream(std::uint64_t seed, std::uint64_t frame) : state_(mix(seed ^ mix(frame + 0x632BE59BD9B4E019ull))) {}
+
+    // splitmix64: passes BigCrush, one add and three multiply-xorshifts.
+    std::uint64_t next() { return mix(state_ += 0x9E3779B97F4A7C15ull); }
+
+    // Standard normal, approximated by the sum of four uniform 16-bit
+    // draws from one 64-bit word (Irwin-Hall, variance matched): smooth,
+    // tails to +-3.5 sigma, ten times cheaper than Box-Muller, which matters
+    // at 230 000 samples per frame.
+    double normal() {
+        const std::uint64_t r = next();
+        const double sum = double(r & 0xFFFF) + double((r >> 16) & 0xFFFF) + double((r >> 32) & 0xFFFF) +
+                           double(r >> 48);
+        constexpr double kMean = 4 * 32767.5;
+        constexpr double kInvStd = 1.0 / 37837.23;  // sqrt(4 * (65536^2 - 1) / 12)
+        return (sum - kMean) * kInvStd;
+    }
+
+private:
+    static std::uint64_t mix(std::uint64_t z) {
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    std::uint64_t state_;
+};
+
+// The image sensor: integrates each row's light, adds shot and read noise,
+// amplifies, quantises to 8 bits and clips.
 
 struct CameraNoise {
     // Photo-electrons per DN at unity gain: shot noise has variance signal / gain in DN^2.
@@ -36,5 +73,44 @@ struct Readout {
 // is multiplied by analog_gain * white_balance[c], rounded and clipped to 0..255.
 void expose(const LedImages& images, const std::vector<std::array<double, 3>>& row_drive, int width,
             const Readout& readout, const CameraNoise& noise, NoiseStream& rng, std::uint8_t* out);
+
+// When light reaches which row: the LED switching timeline and the rolling
+// shutter that samples it.
+
+// Rolling shutter of one stream: row r of a frame starting at t is exposed
+// during [t + r * row_time, t + r * row_time + exposure].
+struct ShutterTiming {
+    double frame_period = 0;
+    double row_time = 0;
+    double nominal_exposure = 0;
+    int rows = 0;
+
+    // From the first row's start to the last row's end.
+    double span(double exposure) const { return (rows - 1) * row_time + exposure; }
+    static ShutterTiming for_stream(double fps, int rows);
+};
+
+// The LED settings over time: an initial one, then each requested setting
+// from the moment it takes effect.
+class LedTimeline {
+public:
+    explicit LedTimeline(Illumination initial) : initial_(std::move(initial)) {}
+
+    // Effective times must not decrease (requests are made in time order with
+    // one fixed latency); a change at the same time as another replaces it.
+    void change(double at, const Illumination& setting);
+    // Each LED channel's drive (0..1) averaged over [t0, t1]: what a row
+    // exposed over that interval integrates.
+    std::array<double, 3> mean_drive(double t0, double t1, int max_level) const;
+    // The distinct settings in effect for some positive time within [t0, t1],
+    // in time order.
+    std::vector<Illumination> settings_during(double t0, double t1) const;
+    // Drops changes that can no longer matter to anything exposed from t on.
+    void forget_before(double t);
+
+private:
+    Illumination initial_;
+    std::vector<std::pair<double, Illumination>> changes_;  // sorted by time
+};
 
 }  // namespace vkfuse::sim

@@ -1,6 +1,6 @@
-// The simulated DIGIT as a Sensor (include/vkfuse/sim_digit.hpp): time,
+// The simulated DIGIT as a Sensor (include/vkfuse/sensor/sim_digit.hpp): time,
 // LED requests and frame bookkeeping; the physics lives in the sim_* files.
-#include "vkfuse/sim_digit.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include "sim/camera.hpp"
 #include "sim/isp.hpp"
 #include "sim/relief.hpp"
-#include "sim/scene.hpp"
-#include "sim/shutter.hpp"
-#include "vkfuse/error.hpp"
+#include "sim/lighting.hpp"
+#include "sim/camera.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse {
 namespace {

@@ -1,5 +1,5 @@
-// sim/relief.hpp - the objects the simulated DIGIT can be pressed
-// with: each a height field of the face that touches the gel.
+// sim/relief.hpp - the objects pressed into the gel, as height fields, and the
+// stroked lettering some of them carry.
 #pragma once
 #include <memory>
 #include <string>
@@ -7,8 +7,12 @@
 #include <vector>
 
 #include "sim/raster.hpp"
+#include "sim/shapes.hpp"
 
 namespace vkfuse::sim {
+
+// The objects the simulated DIGIT can be pressed with: each a height field of
+// the face that touches the gel.
 
 // Height (mm) off the object: far below anything the gel can reach.
 inline constexpr double kAbsent = -1e3;
@@ -40,5 +44,16 @@ std::unique_ptr<Relief> make_nut();
 std::unique_ptr<Relief> make_velcro();
 std::unique_ptr<Relief> make_file();
 std::unique_ptr<Relief> make_text();
+
+// A tiny stroke font for embossed lettering (the text object, the value on a
+// coin, the logo on LEGO studs).
+
+// Centre lines of text set in capitals of height_mm, centred on centre.
+// Knows 0, 1, D, E, G, I, L, O, T (what the built-in objects use); any other
+// character throws std::logic_error, a bug in an object's definition.
+std::vector<Polyline> text_strokes(std::string_view text, double height_mm, Point centre);
+inline Strokes lettering(std::string_view text, double height_mm, Point centre) {
+    return Strokes(text_strokes(text, height_mm, centre));
+}
 
 }  // namespace vkfuse::sim

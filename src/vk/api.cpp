@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 

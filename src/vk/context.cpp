@@ -7,7 +7,7 @@
 #include "vk/context_impl.hpp"
 #include "vk/device_info.hpp"
 #include "vk/shader_registry.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse {
 namespace {

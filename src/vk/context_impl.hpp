@@ -11,7 +11,7 @@
 
 #include "vk/api.hpp"
 #include "vk/kernel_interface.hpp"
-#include "vkfuse/context.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse {
 

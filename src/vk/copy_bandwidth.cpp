@@ -4,7 +4,7 @@
 
 #include "vk/buffer.hpp"
 #include "vk/timed_commands.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 

@@ -1,6 +1,6 @@
 #include "vk/device_info.hpp"
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 namespace {

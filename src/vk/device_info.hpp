@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "vk/api.hpp"
-#include "vkfuse/context.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse::vk {
 

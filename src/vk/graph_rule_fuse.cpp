@@ -2,7 +2,7 @@
 // coefficient by coefficient across the K frames, shared by the Laplacian
 // top level and the symmetric wavelet levels.
 #include "vk/plan_impl.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 

@@ -9,7 +9,7 @@
 #include "vk/buffer.hpp"
 #include "vk/recorder.hpp"
 #include "vk/timed_commands.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 namespace {

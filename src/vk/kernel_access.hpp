@@ -8,7 +8,7 @@
 #pragma once
 #include <cstdint>
 
-#include "vkfuse/context.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse::vk {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 namespace {

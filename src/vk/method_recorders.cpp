@@ -1,7 +1,7 @@
 // The fusion methods' Vulkan rows (vk/method_recorders.hpp).
 #include "vk/method_recorders.hpp"
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 namespace {

@@ -10,7 +10,7 @@
 #include "vk/magnitude.hpp"
 #include "vk/method_recorders.hpp"
 #include "vk/plan_impl.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse {
 namespace {

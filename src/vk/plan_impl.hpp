@@ -7,7 +7,7 @@
 #include "vk/buffer.hpp"
 #include "vk/command_slot.hpp"
 #include "vk/recorder.hpp"
-#include "vkfuse/plan.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::vk {
 

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "vk/shader_registry.hpp"
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 

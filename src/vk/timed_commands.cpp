@@ -4,7 +4,7 @@
 #include <chrono>
 #include <vector>
 
-#include "vkfuse/error.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 

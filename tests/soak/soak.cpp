@@ -29,9 +29,9 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/context.hpp"
-#include "vkfuse/error.hpp"
-#include "vkfuse/plan.hpp"
+#include "vkfuse/vk/context.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace {
 

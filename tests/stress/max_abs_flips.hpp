@@ -13,8 +13,8 @@
 #pragma once
 #include <span>
 
-#include "vkfuse/fusion.hpp"
-#include "vkfuse/image.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/image.hpp"
 
 namespace vkfuse::test {
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "test_support.hpp"
-#include "vkfuse/plan.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::test {
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/context.hpp"
-#include "vkfuse/fusion.hpp"
-#include "vkfuse/image.hpp"
-#include "vkfuse/metrics.hpp"
+#include "vkfuse/vk/context.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/core/metrics.hpp"
 
 namespace vkfuse::test {
 

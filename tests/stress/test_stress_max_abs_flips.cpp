@@ -6,7 +6,7 @@
 
 #include "max_abs_flips.hpp"
 #include "stress_support.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

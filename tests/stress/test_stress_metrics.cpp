@@ -11,7 +11,7 @@
 
 #include "stress_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/reference.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -1,0 +1,29 @@
+// vkfuse/core/error.hpp - the one exception type vkfuse throws.
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace vkfuse {
+
+// What went wrong, coarse enough for a caller to branch on.
+enum class ErrorKind {
+    InvalidArgument,  // unknown name, impossible level count, wrong frame count ...
+    Io,               // missing/unreadable/unwritable file
+    Format,           // corrupt or unsupported file contents
+    Shape,            // inputs whose shapes or channel counts disagree
+    Numeric,          // NaN or Inf in an input
+    Device,           // no Vulkan loader/device, device lost, out of device memory
+};
+
+// Every failure vkfuse reports is an Error whose what() is one line naming the
+// input (file, option or object) and the problem, e.g. "a.png: not a PNG file".
+class Error : public std::runtime_error {
+public:
+    Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+    ErrorKind kind() const noexcept { return kind_; }
+
+private:
+    ErrorKind kind_;
+};
+
+}  // namespace vkfuse

@@ -1,0 +1,121 @@
+// vkfuse/rig/rig.hpp - S sensors cycling through their LED sequence, one capture
+// thread each, fused together every cycle with one GPU submit.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vkfuse/sensor/clock.hpp"
+#include "vkfuse/vk/context.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/sensor/illumination.hpp"
+#include "vkfuse/core/metrics.hpp"
+#include "vkfuse/sensor/sensor.hpp"
+#include "vkfuse/sensor/switching.hpp"
+
+namespace vkfuse {
+
+// A sensor and the clock its frame timestamps are on (the rig reads it to
+// time LED requests). The clock may be null when frames are judged by label.
+struct RigSensor {
+    std::shared_ptr<Sensor> sensor;
+    std::shared_ptr<Clock> clock;
+};
+
+enum class FrameJudging {
+    Timing,  // live sensors: measure switch timing at start-up, then trust frame timestamps
+    Label,   // recorded datasets: trust Frame::illumination; no calibration
+};
+
+struct RigConfig {
+    FusionSpec fusion;
+    IlluminationSequence sequence;  // K settings, one frame each per cycle
+    FrameJudging judging = FrameJudging::Timing;
+    SwitchCalibration calibration;
+    // Frames per setting averaged into each sensor's background model before
+    // the first cycle (with nothing pressed); 0: no background, no
+    // background_diff in the metrics.
+    int background_frames = 0;
+    double cycle_timeout_s = 5.0;     // wall-clock time a cycle waits for a sensor
+    double startup_timeout_s = 60.0;  // wall-clock time for calibration and background
+    bool want_fused = true;           // read fused images back (else metrics only)
+
+    // Called on a sensor's capture thread with each setting's background
+    // frames (e.g. to record them), then once when its background is done
+    // and before its first cycle (e.g. to press the object). Never called
+    // after the Rig is destroyed.
+    std::function<void(std::size_t sensor, const Illumination& setting, const std::vector<Frame>& frames)>
+        on_background;
+    std::function<void(std::size_t sensor)> after_background;
+};
+
+enum class SensorStatus {
+    Ok,       // fresh frames fused this cycle
+    Timeout,  // nothing new within cycle_timeout_s; not waited for again until it delivers
+    Failed,   // threw: dropped for the rest of the run
+};
+
+struct SensorCycle {
+    std::string serial;
+    SensorStatus status = SensorStatus::Ok;
+    std::string error;             // when not Ok: one line that names the serial
+    std::vector<Frame> frames;     // when Ok: the K frames fused, slot k lit by sequence[k]
+    Metrics metrics;               // when Ok
+    const Image* fused = nullptr;  // when Ok and want_fused; valid until the next cycle
+};
+
+struct CycleResult {
+    std::uint64_t cycle = 0;  // from 0
+    std::vector<SensorCycle> sensors;
+    double capture_wait_s = 0;  // wall time spent waiting for the sensors' frames
+    double fuse_s = 0;          // wall time of the one submit (or the CPU fusion)
+};
+
+// Every sensor has its own capture thread that calibrates it (FrameJudging::
+// Timing), takes its background frames, then assembles cycles back to back:
+// the thread captures cycle c + 1 while cycle c is fused. next() waits until
+// every sensor still in step has a cycle ready (or cycle_timeout_s passes),
+// fuses all of them with one Plan::run, and reports each sensor.
+//
+// A sensor that is late gets status Timeout and its slot in the plan is
+// filled with its last good frames (black before it had any); its result is
+// not reported as fused. Later cycles do not wait for it until it delivers
+// again, so one stalled sensor costs the others one timeout, once. A sensor
+// that throws is Failed for the rest of the run, with its message (naming its
+// serial) in every later cycle. All sensors must share one frame size.
+class Rig {
+public:
+    // context null: fuse with the CPU reference path instead of the GPU.
+    Rig(Context* context, RigConfig config, std::vector<RigSensor> sensors);
+    ~Rig();  // stops the capture threads (a thread stuck in a sensor call is left behind, detached)
+    Rig(const Rig&) = delete;
+    Rig& operator=(const Rig&) = delete;
+
+    // Starts the capture threads and waits (at most startup_timeout_s) until
+    // every sensor is calibrated and has its background. Throws Error when no
+    // sensor got that far.
+    void start();
+    // The next cycle (start() first).
+    CycleResult next();
+
+    std::size_t sensors() const;
+    std::string serial(std::size_t sensor) const;
+    // What calibration measured (nullopt when judging by label or not yet done).
+    std::optional<SwitchTiming> timing(std::size_t sensor) const;
+    // True when every sensor has failed and no cycle is left to take: nothing more will come.
+    bool all_failed() const;
+    // Fusion submits so far: one per cycle for all sensors together.
+    std::uint64_t submits() const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+std::string_view to_string(SensorStatus status);  // "ok", "timeout", "failed"
+
+}  // namespace vkfuse

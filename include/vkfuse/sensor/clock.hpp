@@ -1,0 +1,20 @@
+// vkfuse/sensor/clock.hpp - the time a sensor lives in: real for live runs, virtual
+// for fast deterministic tests and replays.
+#pragma once
+#include <memory>
+
+namespace vkfuse {
+
+class Clock {
+public:
+    virtual ~Clock() = default;
+    virtual double now() const = 0;             // seconds since the clock's start
+    virtual void wait_until(double seconds) = 0;  // returns once now() >= seconds
+};
+
+// std::chrono::steady_clock from construction; wait_until sleeps.
+std::shared_ptr<Clock> make_real_clock();
+// Starts at 0; wait_until jumps forward instantly (never backwards). Thread-safe.
+std::shared_ptr<Clock> make_virtual_clock();
+
+}  // namespace vkfuse

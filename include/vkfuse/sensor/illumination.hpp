@@ -1,0 +1,51 @@
+// vkfuse/sensor/illumination.hpp - LED settings of a sensor and the sequence used per cycle.
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vkfuse {
+
+// The LEDs a sensor model has. DIGIT: 3 LEDs (red, green, blue), levels 0..15.
+// Digit360: 8 RGB LEDs = 24 channels, 0..255. Anything else fits the same shape.
+struct LedLayout {
+    std::string model;
+    int channels = 3;         // individually settable LED channels
+    int max_level = 15;       // levels are 0..max_level
+    std::vector<std::string> names;  // one per channel ("r", "g", "b")
+
+    static LedLayout digit();     // 3 channels r, g, b; 0..15
+    static LedLayout digit360();  // 24 channels led0.r .. led7.b; 0..255
+};
+
+// The level of every LED channel. DIGIT default: (15, 15, 15).
+class Illumination {
+public:
+    Illumination() = default;
+    explicit Illumination(std::vector<int> levels) : levels_(std::move(levels)) {}
+
+    const std::vector<int>& levels() const { return levels_; }
+    int level(int channel) const { return levels_.at(std::size_t(channel)); }
+    // "15,15,15"
+    std::string to_string() const;
+    // Throws Error(InvalidArgument) naming the setting when the channel count or
+    // a level does not fit layout ("illumination 16,0,0: level 16 of r exceeds 15").
+    void check(const LedLayout& layout) const;
+
+    // "15,15,15" -> {15, 15, 15}; throws Error(InvalidArgument) on malformed text.
+    static Illumination parse(std::string_view text);
+
+    friend bool operator==(const Illumination&, const Illumination&) = default;
+
+private:
+    std::vector<int> levels_;
+};
+
+// The ordered settings a sensor cycles through, one frame each per cycle.
+using IlluminationSequence = std::vector<Illumination>;
+
+// "15,15,15+0,15,0" -> two settings; throws Error(InvalidArgument).
+IlluminationSequence parse_sequence(std::string_view text);
+std::string to_string(const IlluminationSequence& sequence);
+
+}  // namespace vkfuse

@@ -1,0 +1,83 @@
+// vkfuse/vk/context.hpp - a Vulkan device, opened once and shared by plans.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vkfuse {
+namespace vk {
+struct ContextAccess;
+}
+
+struct DeviceInfo {
+    int index = 0;            // position in the loader's enumeration
+    std::string name;         // "llvmpipe (LLVM 15.0.6, 256 bits)", "NVIDIA H100 ..."
+    std::string driver;       // driver name and info
+    std::string type;         // "cpu", "integrated", "discrete", "virtual", "other"
+    std::string api_version;  // "1.3.230"
+    bool usable = false;      // meets vkfuse's needs (Vulkan 1.2, buffer device address)
+    std::string why_not;      // when !usable, the missing capability
+    bool fp16_storage = false;  // 16-bit storage buffers and float16 in shaders: Precision::Fp16Storage
+    bool float64 = false;       // double arithmetic in shaders: FilterArithmetic::Float64
+};
+
+// How the wavelet filters accumulate an output before rounding it to float
+// once. Both meet the same tolerances (float64 a little closer to the double
+// reference; outputs may differ in the last bits); they differ in cost: a
+// double fma per tap, or about ten float operations per tap.
+enum class FilterArithmetic {
+    Auto,                // Float64 on CPU devices that have it (lavapipe), else CompensatedFloat32
+    Float64,             // a double accumulator (needs DeviceInfo::float64)
+    CompensatedFloat32,  // Dot2: a float sum and its error term (any device)
+};
+std::string_view to_string(FilterArithmetic);  // "auto", "float64", "compensated float32"
+
+struct ContextOptions {
+    int device_index = -1;    // -1: the best usable device (discrete > integrated > cpu)
+    bool validation = false;  // enable VK_LAYER_KHRONOS_validation (error if absent)
+    // Receives every validation-layer message (errors and warnings) when
+    // validation is on. Tests fail on any message of type VALIDATION.
+    std::function<void(const std::string&)> on_validation_message;
+    // Kernels reach their buffers through descriptor bindings, except in
+    // plans whose buffers exceed what one binding may span (the device's
+    // maxStorageBufferRange), which use device addresses. true: every plan
+    // uses device addresses (to test or compare that path on any plan).
+    bool device_addresses_only = false;
+    FilterArithmetic filter_arithmetic = FilterArithmetic::Auto;
+};
+
+// Owns a VkInstance, one VkDevice and its compute queue. Cheap to move, not
+// copyable; several Contexts may live in one process, and one Context may be
+// shared by threads (pipeline creation and queue submission are locked). Throws Error(Device)
+// when no loader, no device, or no usable device exists.
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(Context&&) noexcept;
+    Context& operator=(Context&&) noexcept;
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const DeviceInfo& device() const;
+    // The filter arithmetic in use: Float64 or CompensatedFloat32, never Auto.
+    FilterArithmetic filter_arithmetic() const;
+    // Number of validation messages seen so far (0 unless validation is on).
+    std::uint64_t validation_message_count() const;
+
+    struct Impl;
+
+private:
+    friend struct vk::ContextAccess;  // the library's own way to its device
+    Impl& impl() { return *impl_; }
+    std::unique_ptr<Impl> impl_;
+};
+
+// Lists the Vulkan devices without opening one. Throws Error(Device) if the
+// loader is missing; returns an empty list if it finds no device.
+std::vector<DeviceInfo> list_devices();
+
+}  // namespace vkfuse

@@ -1,0 +1,105 @@
+// vkfuse/vk/plan.hpp - the GPU hot path: plan once, run every sensor cycle.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vkfuse/vk/context.hpp"
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/core/metrics.hpp"
+
+namespace vkfuse {
+
+// How a plan stores the planes it keeps on the device between kernels
+// (unpacked frames, pyramid levels, wavelet coefficients, fused planes).
+// Arithmetic is float32 either way, and frames, backgrounds, metrics and the
+// fused image read back are float32. Fp16Storage halves the bytes each kernel
+// moves, which is what a memory-bound GPU spends its time on, at about 1e-3
+// relative error (vkfuse-bench reports it per cell); it is never the default
+// and needs DeviceInfo::fp16_storage, else Plan throws Error(Device). Planes
+// then hold magnitudes up to 65504: where a value overflowed (inputs far
+// outside [0, 1]; float32 frames beyond 2^40 are scaled down first, see
+// run()), fused() and metrics() throw Error(Numeric) instead of returning Inf
+// or NaN.
+enum class Precision { Fp32, Fp16Storage };
+std::string_view to_string(Precision);
+
+struct PlanConfig {
+    FusionSpec fusion;      // ignored when fuse is false
+    int height = 0;
+    int width = 0;
+    int channels = 3;       // 1 or 3
+    int frames = 2;         // K: frames fused per sensor per cycle
+    int sensors = 1;        // S: sensors served by one submit
+    PixelType input = PixelType::F32;
+    bool want_fused = true;     // read back the fused image of every sensor
+    bool want_metrics = true;   // compute sharpness and contrast per sensor
+    bool background_diff = false;  // also the difference with each sensor's background
+    bool profile = false;       // per-kernel GPU timestamps (Plan::profile)
+    Precision precision = Precision::Fp32;
+    // false: nothing is fused; each sensor's one frame (frames = 1) is read
+    // back as it is and scored (what `vkfuse metrics` does).
+    bool fuse = true;
+};
+
+// Time one kernel (or a group of dispatches) took on the device in the last run.
+struct KernelTime {
+    std::string name;
+    double ms = 0;
+};
+
+// Everything for one (method, shape, K, S, metrics) is created here once:
+// pipelines, device buffers and one command buffer recorded at construction.
+// run() copies the frames into the upload buffer, submits that command buffer
+// once, waits, and exposes what was asked for. A Plan is used by one thread at
+// a time; plans of one Context may run on different threads at once. The
+// Context must outlive its plans. Throws Error on invalid configuration or
+// device failure.
+class Plan {
+public:
+    Plan(Context& context, const PlanConfig& config);
+    ~Plan();
+    Plan(Plan&&) noexcept;
+    Plan& operator=(Plan&&) noexcept;
+    Plan(const Plan&) = delete;
+    Plan& operator=(const Plan&) = delete;
+
+    const PlanConfig& config() const;
+
+    // Background frame of one sensor (shape height x width x channels, U8 or
+    // F32 whatever config().input is: a background model is a float mean).
+    // Needed before run() when background_diff is set. Throws Error(Numeric)
+    // for NaN or Inf, and in a U8 plan for one whose largest magnitude is
+    // below 2^-64 (8-bit frames are never scaled, see run()).
+    void set_background(int sensor, const FrameView& background);
+
+    // frames: sensors x frames views, sensor-major (sensor s, frame k at
+    // s * frames + k), each height x width x channels of type config().input.
+    // F32 frames may hold any finite magnitude, subnormal to FLT_MAX: where a
+    // sensor's frames (and background) lie outside [2^-40, 2^40) they are
+    // multiplied by a power of two on the way to the device and its results
+    // by its inverse on the way back (docs/architecture.md, "Magnitudes").
+    // NaN or Inf in a frame: Error(Numeric) naming it, as for the reference.
+    void run(std::span<const FrameView> frames);
+
+    // Results of the last run(). Error(Numeric) where a fused value lies
+    // beyond float32's range (the reference cannot store it either) or the
+    // device computed a non-finite value: never Inf, NaN or a wrong number.
+    const Image& fused(int sensor) const;  // requires want_fused
+    Metrics metrics(int sensor) const;     // requires want_metrics
+    std::vector<KernelTime> profile() const;  // requires profile
+    // Command buffers submitted so far: one per run(), whatever the sensor count.
+    std::uint64_t submits() const;
+
+    struct Impl;
+
+private:
+    explicit Plan(std::unique_ptr<Impl> impl);  // the library's internal plan kinds
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vkfuse
