@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/method_table.hpp"
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/core/error.hpp"
@@ -124,6 +125,24 @@ TEST_F(VulkanFusion, EveryRulePairEveryWaveletAndMode) {
                     s.detail_rule = d;
                     check_case(ctx(), {s, 45, 38, 3, 2, 1, "rules"}, 21);
                 }
+}
+
+// Every row of the method table at its defaults and within its limits, against
+// its own reference: a method added to the table is swept here before it has
+// tests of its own (K 1, 2, 5 and C 1, 3 where the row allows them; odd and
+// quad-aligned sizes; sensors batched).
+TEST_F(VulkanFusion, EveryMethodRowAgainstItsReference) {
+    for (const core::MethodInfo& row : core::method_table()) {
+        FusionSpec s;
+        s.method = row.method;
+        const std::vector<int> frames = row.exact_frames ? std::vector<int>{row.exact_frames} : std::vector<int>{1, 2, 5};
+        const std::vector<int> channels =
+            row.exact_channels ? std::vector<int>{row.exact_channels} : std::vector<int>{1, 3};
+        for (int k : frames)
+            for (int c : channels)
+                for (auto [h, w] : {std::pair{75, 83}, {96, 128}})  // the default wavelet levels need sides >= 72
+                    check_case(ctx(), {s, h, w, c, k, 2, "row " + std::string(row.name)}, 41);
+    }
 }
 
 TEST_F(VulkanFusion, PointwiseMethods) {
