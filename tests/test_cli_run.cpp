@@ -58,6 +58,31 @@ TEST(CliRun, SimulatedCoinWithOutputs) {
     EXPECT_EQ(read_bytes(tmp.file("out/summary.json")), r.out);
 }
 
+// --motion tap: the coin is pressed for the first half of each period and
+// lifted for the second, and the fused cycles show it - the difference with
+// the background rises and falls with the taps.
+TEST(CliRun, TapMotionComesAndGoesInTheMetrics) {
+    TempDir tmp;
+    const CliResult r = run_cli({"run", "--virtual-clock", "--cycles", "24", "--background-frames", "2", "--motion",
+                                 "tap", "--motion-period", "0.5", "--method", "brovey", "--out", tmp.file("out")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<double> diffs;
+    for (const std::string& m : lines_of(read_bytes(tmp.file("out/metrics.jsonl")))) {
+        const std::size_t at = m.find("\"background_diff\": ");
+        ASSERT_NE(at, std::string::npos) << m;
+        diffs.push_back(std::stod(m.substr(at + 19)));
+    }
+    ASSERT_EQ(diffs.size(), 24u);
+    const auto [low, high] = std::minmax_element(diffs.begin(), diffs.end());
+    EXPECT_GT(*high, 4 * *low) << "pressed and lifted cycles look alike";
+    // Each cycle takes about 0.07 s of sensor time: 24 cycles span three
+    // taps, so the contact comes and goes at least twice.
+    const double middle = (*low + *high) / 2;
+    int changes = 0;
+    for (std::size_t i = 1; i < diffs.size(); ++i) changes += (diffs[i] > middle) != (diffs[i - 1] > middle);
+    EXPECT_GE(changes, 4);
+}
+
 TEST(CliRun, SixteenSensorsOneSubmitPerCycle) {
     TempDir tmp;
     const CliResult r = run_cli({"run", "--sensors", "16", "--cycles", "2", "--virtual-clock", "--background-frames",

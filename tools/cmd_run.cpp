@@ -25,6 +25,8 @@ namespace {
 constexpr OptionSpec kOptions[] = {
     {"--sensors", "", "N", "simulated DIGITs, serials SIM-0001.. (default 1)"},
     {"--object", "", "NAME", "what is pressed into the gel (default coin; see below)"},
+    {"--motion", "", "M", "how it moves: still, tap (pressed half of each period) or slide (default still)"},
+    {"--motion-period", "", "SECONDS", "one tap, or one slide across the gel and back (default 2)"},
     {"--sequence", "", "SEQ", "LED settings per cycle, r,g,b each 0..15, joined by + (default 15,15,15+0,15,0)"},
     {"--method", "", "M", "{methods} (default wavelet)"},
     kLevelsOption,

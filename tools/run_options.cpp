@@ -1,6 +1,7 @@
 #include "run_options.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 
 #include "fusion_options.hpp"
@@ -11,6 +12,12 @@ namespace vkfuse::cli {
 namespace {
 
 [[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::InvalidArgument, message); }
+
+std::string format_seconds(double s) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", s);
+    return text;
+}
 
 IlluminationSequence sequence_option(const std::string& text, const LedLayout& leds) {
     try {
@@ -32,7 +39,8 @@ void check_object(const std::string& object) {
 }
 
 void check_replay_conflicts(const Args& args) {
-    for (const char* option : {"--sensors", "--background-frames", "--virtual-clock", "--camera-auto"})
+    for (const char* option :
+         {"--sensors", "--background-frames", "--virtual-clock", "--camera-auto", "--motion", "--motion-period"})
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
 }
@@ -72,6 +80,13 @@ RunOptions parse_run_options(const Args& args) {
         fail("--sensors " + std::to_string(o.sensors) + ": at most " + std::to_string(kMaxSimulatedSensors));
     if (auto v = args.value("--object")) o.object = *v;
     if (!o.replay) check_object(o.object);
+    if (auto v = args.value("--motion")) o.motion = parse_sim_motion(*v);
+    if (auto v = args.value("--motion-period")) {
+        o.motion_period_s = parse_seconds("--motion-period", *v);
+        if (o.motion_period_s < SimDigitOptions::kMinMotionPeriodS)
+            fail("--motion-period " + *v + ": shorter than the simulator's shortest motion period (" +
+                 format_seconds(SimDigitOptions::kMinMotionPeriodS) + ")");
+    }
     o.sequence = sequence_option(args.value("--sequence").value_or(kDefaultSequence), LedLayout::digit());
     o.fusion = fusion_options(args, with_method(args, FusionSpec{}));
     o.backend = parse_backend(args.value("--backend").value_or("auto"));

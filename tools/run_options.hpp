@@ -8,6 +8,7 @@
 #include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/core/fusion.hpp"
 #include "vkfuse/sensor/illumination.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::cli {
 
@@ -22,6 +23,8 @@ inline constexpr double kSimulatedTimeoutSeconds = 120.0;
 struct RunOptions {
     int sensors = 1;
     std::string object = "coin";
+    SimMotion motion = SimMotion::Still;  // simulated DIGITs: how the pressed object moves
+    double motion_period_s = 2.0;
     IlluminationSequence sequence;  // the paper's best pair unless --sequence
     FusionSpec fusion;              // wavelet, bior4.4, 3 levels unless told
     BackendChoice backend = BackendChoice::Auto;

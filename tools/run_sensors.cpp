@@ -13,6 +13,8 @@ RunSensors simulated_sensors(const RunOptions& o) {
         sim.seed = std::uint64_t(i) + 1;
         sim.object = o.background_frames > 0 ? "nothing" : o.object;
         sim.camera_auto = o.camera_auto;
+        sim.motion = o.motion;
+        sim.motion_period_s = o.motion_period_s;
         char serial[16];
         std::snprintf(serial, sizeof serial, "SIM-%04d", i + 1);
         sim.serial = serial;

@@ -1,5 +1,6 @@
 // The simulated DIGIT as a Sensor (include/vkfuse/sensor/sim_digit.hpp): time,
-// LED requests and frame bookkeeping; the physics lives in the sim_* files.
+// LED requests, press motion and frame bookkeeping; the physics lives in the
+// rest of src/sim/.
 #include "vkfuse/sensor/sim_digit.hpp"
 
 #include <algorithm>
@@ -8,9 +9,9 @@
 
 #include "sim/camera.hpp"
 #include "sim/isp.hpp"
-#include "sim/relief.hpp"
 #include "sim/lighting.hpp"
-#include "sim/camera.hpp"
+#include "sim/motion.hpp"
+#include "sim/relief.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse {
@@ -48,6 +49,9 @@ const SimDigitOptions& checked(const SimDigitOptions& o) {
     check_position(o.serial, o.x, o.y);
     if (!(o.led_latency_s >= 0 && std::isfinite(o.led_latency_s)))
         fail(o.serial, "LED latency " + std::to_string(o.led_latency_s) + " s is not a time >= 0");
+    if (!(o.motion_period_s >= SimDigitOptions::kMinMotionPeriodS && std::isfinite(o.motion_period_s)))
+        fail(o.serial, "motion period " + std::to_string(o.motion_period_s) + " s is not a time >= " +
+                           std::to_string(SimDigitOptions::kMinMotionPeriodS) + " s");
     return o;
 }
 
@@ -76,8 +80,9 @@ struct SimDigit::Impl {
     std::shared_ptr<Clock> clock;
     double start = 0;  // t_0
     sim::LedTimeline timeline{power_on()};
-    sim::Contact contact;
-    sim::LedImages images;
+    sim::Contact pressed;       // as set; the motion moves it from there
+    double pressed_since = 0;   // when it was set: the motion's time 0
+    sim::MotionScenes scenes;   // every contact the motion visits, rendered
     std::uint64_t next = 0;
     std::deque<SimFrameTruth> truths;
 
@@ -88,8 +93,20 @@ struct SimDigit::Impl {
           isp(isp_target(grid, rig), o.camera_auto, limits),
           clock(o.clock ? o.clock : make_virtual_clock()),
           start(clock->now()),
-          contact{o.object == "coin" ? "coin-heads" : o.object, o.press_depth_mm, o.x, o.y},
-          images(sim::render_scene(contact, grid, rig)) {}
+          pressed{o.object == "coin" ? "coin-heads" : o.object, o.press_depth_mm, o.x, o.y},
+          pressed_since(start),
+          scenes(pressed, o.motion, grid, rig) {}
+
+    // Presses `contact` now: the motion starts over from it.
+    void press(const sim::Contact& contact) {
+        scenes = sim::MotionScenes(contact, options.motion, grid, rig);
+        pressed = contact;
+        pressed_since = clock->now();
+    }
+
+    sim::Contact contact_of(std::uint64_t n) const {
+        return sim::contact_at(pressed, options.motion, options.motion_period_s, frame_start(n) - pressed_since);
+    }
 
     double frame_start(std::uint64_t n) const { return start + double(n) * shutter.frame_period; }
     double exposure() const { return shutter.nominal_exposure * isp.readout().exposure_scale; }
@@ -112,11 +129,11 @@ struct SimDigit::Impl {
         return drives;
     }
 
-    void record(std::uint64_t n) {
+    void record(std::uint64_t n, const sim::Contact& contact) {
         const double t = frame_start(n);
         const sim::Readout& r = isp.readout();
         SimFrameTruth truth{n, t, false, {}, timeline.settings_during(t, frame_end(n)), exposure(), r.analog_gain,
-                            r.white_balance};
+                            r.white_balance, contact.object, contact.x, contact.y};
         truth.mixed = truth.settings.size() > 1;
         if (!truth.mixed) truth.lit_by = truth.settings.front();
         truths.push_back(std::move(truth));
@@ -127,8 +144,10 @@ struct SimDigit::Impl {
     Frame read_out(std::uint64_t n, bool deliver) {
         Frame frame{n, frame_start(n), grid.height, grid.width, std::vector<std::uint8_t>(grid.size() * 3), std::nullopt};
         sim::NoiseStream rng(options.seed, n);
-        sim::expose(images, row_drives(frame.timestamp), grid.width, isp.readout(), noise, rng, frame.pixels.data());
-        if (deliver) record(n);
+        const sim::Contact contact = contact_of(n);
+        sim::expose(scenes.images(contact), row_drives(frame.timestamp), grid.width, isp.readout(), noise, rng,
+                    frame.pixels.data());
+        if (deliver) record(n, contact);
         isp.meter(frame.pixels.data(), grid.size());
         return frame;
     }
@@ -180,20 +199,18 @@ SimTiming SimDigit::timing() const {
 
 void SimDigit::set_object(const std::string& object, double press_depth_mm) {
     check_object(impl_->options.serial, object, press_depth_mm);
-    sim::Contact contact = impl_->contact;
+    sim::Contact contact = impl_->pressed;
     contact.object = object == "coin" ? "coin-heads" : object;
     contact.depth_mm = press_depth_mm;
-    impl_->images = sim::render_scene(contact, impl_->grid, impl_->rig);
-    impl_->contact = contact;
+    impl_->press(contact);
 }
 
 void SimDigit::move_object(double x, double y) {
     check_position(impl_->options.serial, x, y);
-    sim::Contact contact = impl_->contact;
+    sim::Contact contact = impl_->pressed;
     contact.x = x;
     contact.y = y;
-    impl_->images = sim::render_scene(contact, impl_->grid, impl_->rig);
-    impl_->contact = contact;
+    impl_->press(contact);
 }
 
 std::vector<std::string> SimDigit::objects() { return sim::relief_names(); }

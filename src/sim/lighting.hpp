@@ -101,6 +101,8 @@ struct Contact {
     std::string object = "nothing";  // a name make_relief knows
     double depth_mm = 0;
     double x = 0.5, y = 0.5;         // centre, fractions of the field
+
+    bool operator==(const Contact&) const = default;
 };
 
 // The per-LED camera images of the gel with contact pressed in.

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vkfuse/sensor/clock.hpp"
@@ -18,12 +19,33 @@
 
 namespace vkfuse {
 
+// How the pressed object moves, timed from the moment it was pressed (the
+// sensor's construction, or set_object / move_object). A frame shows the
+// contact of its timestamp, the start of its row 0: the rows of one frame
+// never see two contacts.
+enum class SimMotion {
+    Still,  // stays as pressed
+    Tap,    // pressed for the first half of every period, lifted clear of the gel for the second
+    // Slides across the middle of the gel at its press depth and y: the centre
+    // goes from x = 0.25 to 0.75 of the width and back once per period, in
+    // steps of 1/16 of the width. The 9 positions are rendered when the object
+    // is pressed (a few seconds), so the sensor keeps its frame rate after.
+    Slide,
+};
+std::string_view to_string(SimMotion motion);  // "still", "tap", "slide"
+// Throws Error(InvalidArgument) "<what>: unknown motion ..." naming the choices.
+SimMotion parse_sim_motion(std::string_view name, std::string_view what = "--motion");
+
 struct SimDigitOptions {
     std::uint64_t seed = 1;         // camera noise; everything else is deterministic physics
     bool vga = false;               // false: QVGA 320x240 at 60 fps; true: VGA 640x480 at 30 fps
     std::string object = "coin";    // one of SimDigit::objects() (or "coin" = "coin-heads")
     double press_depth_mm = 1.0;    // how far the object is pressed into the gel, 0..2.5
     double x = 0.5, y = 0.5;        // contact centre, fraction of width / height, 0..1
+    SimMotion motion = SimMotion::Still;
+    double motion_period_s = 2.0;   // one tap, or one slide there and back; >= kMinMotionPeriodS
+    // Three frames at 60 fps: anything faster shows no motion, only aliasing.
+    static constexpr double kMinMotionPeriodS = 0.05;
     // A new setting takes effect this long after it is requested (USB request,
     // firmware, LED driver). Frames exposed across that moment are mixed.
     double led_latency_s = 1.5 / 60.0;
@@ -66,6 +88,10 @@ struct SimFrameTruth {
     double exposure_s = 0;
     double analog_gain = 1;
     std::array<double, 3> white_balance{1, 1, 1};
+    // What touched the gel: the object ("nothing" when lifted or never
+    // pressed) and its centre (fractions of width and height).
+    std::string object;
+    double contact_x = 0, contact_y = 0;
 };
 
 class SimDigit : public Sensor {
@@ -94,9 +120,11 @@ public:
     SimFrameTruth truth(std::uint64_t frame_index) const;
     SimTiming timing() const;
     // Change what is pressed into the gel ("nothing" for the background), at
-    // the current position. Takes effect from the next grabbed frame.
+    // the current position. Takes effect from the next grabbed frame; the
+    // motion (SimDigitOptions::motion) starts over from the clock's now().
     void set_object(const std::string& object, double press_depth_mm = 1.0);
-    // Move the contact centre (fractions of width / height, 0..1).
+    // Move the contact centre (fractions of width / height, 0..1); the motion
+    // starts over from there.
     void move_object(double x, double y);
 
     // Built-in objects: "nothing", "coin-heads", "coin-tails", "lego", "ball",
