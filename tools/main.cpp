@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "version.hpp"
+#include "vkfuse/version.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {

@@ -2,6 +2,7 @@
 // Each subsystem's headers stand alone too; a caller that uses one links its
 // target (vkfuse::core, vkfuse::sensor, vkfuse::vk, vkfuse::rig) or vkfuse.
 #pragma once
+#include "vkfuse/version.hpp"  // generated: kVersion, VKFUSE_VERSION_MAJOR / MINOR / PATCH
 
 // core: what to fuse, the CPU reference, images and their files
 #include "vkfuse/core/error.hpp"

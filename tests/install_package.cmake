@@ -1,0 +1,57 @@
+# The installed package as a user meets it: cmake --install into a fresh
+# prefix, then examples/fuse_installed built against it with
+# find_package(vkfuse CONFIG) and run (the GPU's image must agree with the
+# reference), then the same program compiled with `pkg-config --cflags --libs
+# vkfuse` alone.
+#   cmake -DBUILD=<build dir> -DSOURCE=<source dir> -DWORK=<scratch dir> -DCXX=<compiler> -P install_package.cmake
+foreach(var BUILD SOURCE WORK CXX)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "install_package.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+file(REMOVE_RECURSE ${WORK})
+set(prefix ${WORK}/prefix)
+
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${status}):\n${out}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+
+run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
+foreach(installed include/vkfuse/vkfuse.hpp include/vkfuse/version.hpp include/vkfuse/core/fusion.hpp
+                  include/vkfuse/vk/plan.hpp include/vkfuse/sensor/sim_digit.hpp include/vkfuse/rig/rig.hpp
+                  lib/cmake/vkfuse/vkfuseConfig.cmake lib/pkgconfig/vkfuse.pc bin/vkfuse)
+  if(NOT EXISTS ${prefix}/${installed})
+    message(FATAL_ERROR "cmake --install left out ${installed}")
+  endif()
+endforeach()
+file(GLOB_RECURSE internal ${prefix}/include/*/method_table.hpp ${prefix}/include/*/plan_impl.hpp)
+if(internal)
+  message(FATAL_ERROR "cmake --install published internal headers: ${internal}")
+endif()
+
+# find_package(vkfuse CONFIG) in a project of its own.
+run("configuring the example" ${CMAKE_COMMAND} -S ${SOURCE}/examples/fuse_installed -B ${WORK}/example
+    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX})
+run("building the example" ${CMAKE_COMMAND} --build ${WORK}/example)
+run("running the example" ${WORK}/example/fuse_installed)
+message(STATUS "find_package: ${last_output}")
+if(NOT last_output MATCHES "agree|CPU reference only")
+  message(FATAL_ERROR "the example said: ${last_output}")
+endif()
+
+# pkg-config alone.
+set(ENV{PKG_CONFIG_PATH} ${prefix}/lib/pkgconfig)
+run("pkg-config" pkg-config --cflags --libs vkfuse)
+string(STRIP "${last_output}" flags)
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run("compiling with pkg-config's flags" ${CXX} ${SOURCE}/examples/fuse_installed/main.cpp ${flags}
+    -o ${WORK}/fuse_pkgconfig)
+run("running the pkg-config build" ${WORK}/fuse_pkgconfig)
+message(STATUS "pkg-config: ${last_output}")
+if(NOT last_output MATCHES "agree|CPU reference only")
+  message(FATAL_ERROR "the pkg-config build said: ${last_output}")
+endif()
