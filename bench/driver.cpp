@@ -7,17 +7,13 @@
 #include <thread>
 
 #include "backends.hpp"
-#include "timing.hpp"
+#include "floor_model.hpp"
 #include "matrix.hpp"
-#include "matrix.hpp"
+#include "options.hpp"
 #include "peer.hpp"
 #include "report.hpp"
-#include "report.hpp"
-#include "report.hpp"
-#include "report.hpp"
-#include "options.hpp"
+#include "timing.hpp"
 #include "vk/copy_bandwidth.hpp"
-#include "floor_model.hpp"
 #include "vk/kernel_access.hpp"
 #include "vkfuse/core/error.hpp"
 
@@ -30,6 +26,18 @@ constexpr const char* kCppPeer = VKFUSE_BENCH_CPP_PEER;
 constexpr const char* kCppPeer = "";  // OpenCV was not found: PeerRunner::program says so
 #endif
 
+// What vkfuse-bench runs beside it: installed, at <prefix>/<installed> (the
+// program being <prefix>/bin/vkfuse-bench); else where the build put it.
+std::string beside_program(const char* installed, const char* built) {
+    std::error_code ec;
+    const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec && *built) {
+        const std::filesystem::path path = program.parent_path().parent_path() / installed;
+        if (std::filesystem::exists(path, ec)) return path.string();
+    }
+    return built;
+}
+
 // What the run found once, before the first cell.
 struct Environment {
     std::optional<Context> vulkan;
@@ -39,6 +47,7 @@ struct Environment {
     std::optional<vk::KernelAccess> access;
     std::optional<PeerRunner> peers;
     std::optional<PeerRunner> cpp_peer;  // bench/peers/opencv_peer.cpp
+    std::string peer_script, cpp_peer_program;  // where they are, installed or built
 };
 
 bool wants_vulkan(const Options& o, const std::vector<Cell>& cells) {
@@ -77,8 +86,11 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
             }
     }
     if (o.peers && !o.probe) {
-        env.peers.emplace(VKFUSE_BENCH_PEER_SCRIPT, o.python);
-        env.cpp_peer = PeerRunner::program(kCppPeer, {Method::ChannelSum, Method::Brovey, Method::Laplacian});
+        env.peer_script = beside_program(VKFUSE_BENCH_INSTALLED_PEER_SCRIPT, VKFUSE_BENCH_PEER_SCRIPT);
+        env.cpp_peer_program = beside_program(VKFUSE_BENCH_INSTALLED_CPP_PEER, kCppPeer);
+        env.peers.emplace(env.peer_script, o.python);
+        env.cpp_peer =
+            PeerRunner::program(env.cpp_peer_program, {Method::ChannelSum, Method::Brovey, Method::Laplacian});
     }
     return env;
 }
@@ -118,11 +130,11 @@ void print_environment(const Environment& env, const Options& o, double budget) 
     if (!o.peers)
         std::printf("peers: off (--no-peers)\n");
     else if (env.peers->available())
-        std::printf("peers: %s %s\n", env.peers->python().c_str(), VKFUSE_BENCH_PEER_SCRIPT);
+        std::printf("peers: %s %s\n", env.peers->python().c_str(), env.peer_script.c_str());
     else
         std::printf("peers: not available (%s); peer columns stay empty\n", env.peers->why_not().c_str());
     if (o.peers && env.cpp_peer->available())
-        std::printf("C++ peer: %s (%s)\n", kCppPeer, env.cpp_peer->methods().c_str());
+        std::printf("C++ peer: %s (%s)\n", env.cpp_peer_program.c_str(), env.cpp_peer->methods().c_str());
     else if (o.peers)
         std::printf("C++ peer: %s\n", env.cpp_peer->why_not().c_str());
     const bool fp16 = env.vulkan && env.vulkan->device().fp16_storage;

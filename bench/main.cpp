@@ -9,7 +9,6 @@
 #include "driver.hpp"
 #include "io/interrupt_cleanup.hpp"
 #include "options.hpp"
-#include "options.hpp"
 
 int main(int argc, char** argv) {
     using namespace vkfuse::bench;

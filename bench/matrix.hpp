@@ -2,8 +2,8 @@
 #pragma once
 #include <vector>
 
-#include "result.hpp"
 #include "options.hpp"
+#include "result.hpp"
 
 namespace vkfuse::bench {
 

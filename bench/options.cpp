@@ -4,7 +4,6 @@
 #include <functional>
 #include <map>
 
-#include "options.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::bench {

@@ -5,7 +5,6 @@
 
 #include "io/json_value.hpp"
 #include "process.hpp"
-#include "process.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
 

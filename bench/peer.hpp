@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "result.hpp"
 #include "accuracy.hpp"
 #include "inputs.hpp"
 #include "result.hpp"

@@ -3,8 +3,11 @@
 # find_package(vkfuse CONFIG) and run (the GPU's image must agree with the
 # reference), then the same program compiled with `pkg-config --cflags --libs
 # vkfuse` alone.
-#   cmake -DBUILD=<build dir> -DSOURCE=<source dir> -DWORK=<scratch dir> -DCXX=<compiler> -P install_package.cmake
-foreach(var BUILD SOURCE WORK CXX)
+# With -DBENCH=ON, vkfuse-bench is installed too and runs from the prefix,
+# finding its peers there rather than in the source tree.
+#   cmake -DBUILD=<build dir> -DSOURCE=<source dir> -DWORK=<scratch dir> -DCXX=<compiler> -DBENCH=ON|OFF
+#         -P install_package.cmake
+foreach(var BUILD SOURCE WORK CXX BENCH)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "install_package.cmake: -D${var}=... is required")
   endif()
@@ -28,6 +31,20 @@ foreach(installed include/vkfuse/vkfuse.hpp include/vkfuse/version.hpp include/v
     message(FATAL_ERROR "cmake --install left out ${installed}")
   endif()
 endforeach()
+if(BENCH)
+  foreach(installed bin/vkfuse-bench share/vkfuse/peers/pipelines.py)
+    if(NOT EXISTS ${prefix}/${installed})
+      message(FATAL_ERROR "cmake --install left out ${installed}")
+    endif()
+  endforeach()
+  run("the installed vkfuse-bench" ${prefix}/bin/vkfuse-bench --quick --backend cpu --method brovey --sensors 1 --runs 2)
+  if(last_output MATCHES "${SOURCE}/bench/peers")
+    message(FATAL_ERROR "the installed vkfuse-bench runs the source tree's peers:\n${last_output}")
+  endif()
+  string(REGEX MATCH "peers: [^\n]*" peers "${last_output}")
+  message(STATUS "installed vkfuse-bench: ${peers}")
+endif()
+
 file(GLOB_RECURSE internal ${prefix}/include/*/method_table.hpp ${prefix}/include/*/plan_impl.hpp)
 if(internal)
   message(FATAL_ERROR "cmake --install published internal headers: ${internal}")
@@ -50,6 +67,9 @@ string(STRIP "${last_output}" flags)
 separate_arguments(flags UNIX_COMMAND "${flags}")
 run("compiling with pkg-config's flags" ${CXX} ${SOURCE}/examples/fuse_installed/main.cpp ${flags}
     -o ${WORK}/fuse_pkgconfig)
+# pkg-config's flags carry no run path: a shared build is found the way a
+# user outside the system's directories finds it.
+set(ENV{LD_LIBRARY_PATH} ${prefix}/lib)
 run("running the pkg-config build" ${WORK}/fuse_pkgconfig)
 message(STATUS "pkg-config: ${last_output}")
 if(NOT last_output MATCHES "agree|CPU reference only")

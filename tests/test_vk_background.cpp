@@ -8,8 +8,8 @@
 #include "expect_error.hpp"
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/rig/background.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/rig/background.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -13,8 +13,8 @@
 
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/rig/background.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/rig/background.hpp"
 
 namespace vkfuse::test {
 namespace {

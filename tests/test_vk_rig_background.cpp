@@ -14,8 +14,8 @@
 #include "rig_support.hpp"
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/rig/background.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/rig/background.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -3,16 +3,16 @@
 #include <span>
 
 #include "backend.hpp"
-#include "core/check_finite.hpp"
 #include "commands.hpp"
+#include "core/check_finite.hpp"
 #include "fusion_options.hpp"
 #include "inputs.hpp"
 #include "io/interrupt_cleanup.hpp"
 #include "memory_check.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
-#include "vkfuse/vk/plan.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -3,8 +3,8 @@
 #include <string>
 
 #include "commands.hpp"
-#include "vkfuse/vk/context.hpp"
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse::cli {
 namespace {

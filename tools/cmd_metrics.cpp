@@ -13,8 +13,8 @@
 #include "json.hpp"
 #include "memory_check.hpp"
 #include "vkfuse/core/error.hpp"
-#include "vkfuse/vk/plan.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -6,8 +6,8 @@
 #include "progress.hpp"
 #include "staged_directory.hpp"
 #include "stop_signal.hpp"
-#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::cli {

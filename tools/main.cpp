@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "vkfuse/version.hpp"
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/version.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -5,8 +5,8 @@
 
 #include "args.hpp"
 #include "backend.hpp"
-#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/core/fusion.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "image_write_queue.hpp"
-#include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/rig/rig.hpp"
+#include "vkfuse/sensor/illumination.hpp"
 
 namespace vkfuse::cli {
 

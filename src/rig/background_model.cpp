@@ -3,10 +3,10 @@
 #include "core/validate_shape.hpp"
 #include "rig/engine.hpp"
 #include "vk/plan_impl.hpp"
-#include "vkfuse/rig/background.hpp"
 #include "vkfuse/core/error.hpp"
-#include "vkfuse/vk/plan.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/rig/background.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse {
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <span>
 
-#include "vkfuse/vk/context.hpp"
 #include "vkfuse/core/image.hpp"
 #include "vkfuse/core/metrics.hpp"
+#include "vkfuse/vk/context.hpp"
 #include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::rig {

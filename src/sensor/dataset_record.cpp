@@ -1,6 +1,6 @@
 // record_dataset(): any sensor, every object under every setting, clean frames only.
-#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/sensor/switching.hpp"
 
 namespace vkfuse {

@@ -4,8 +4,8 @@
 #include <map>
 #include <set>
 
-#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse {
 namespace {

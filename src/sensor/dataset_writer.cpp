@@ -6,9 +6,9 @@
 #include "io/atomic_write.hpp"
 #include "io/path_component.hpp"
 #include "sensor/dataset_manifest.hpp"
-#include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse {
 namespace {

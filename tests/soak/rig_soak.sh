@@ -11,7 +11,7 @@
 # tracker reports any object left at teardown), and its resident memory
 # stopped growing: a leak grows with every cycle, a driver's pools fill to a
 # steady size and stop (lavapipe, Mesa 25: 3-7 MiB in 1 MiB steps over the
-# first 3,000-4,300 wavelet cycles, depending on the host, then flat). So over
+# first 3,000-5,400 wavelet cycles, depending on the host, then flat). So over
 # the last 40 % of the samples memory may grow by less than 1 MiB, and from
 # the end of warm-up (the first tenth of the samples, at least 5 s) by less
 # than 16 MiB. Prints the memory curve (start,

@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/vk/context.hpp"
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/vk/context.hpp"
 #include "vkfuse/vk/plan.hpp"
 
 namespace {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/vk/context.hpp"
 #include "vkfuse/core/fusion.hpp"
 #include "vkfuse/core/image.hpp"
 #include "vkfuse/core/metrics.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse::test {
 

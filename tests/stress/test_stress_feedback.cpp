@@ -27,8 +27,8 @@
 #include "stress_support.hpp"
 #include "test_support.hpp"
 #include "vk_fixture.hpp"
-#include "vkfuse/vk/plan.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::test {
 namespace {

@@ -5,8 +5,8 @@
 #include <memory>
 #include <span>
 
-#include "vkfuse/vk/context.hpp"
 #include "vkfuse/core/image.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse {
 

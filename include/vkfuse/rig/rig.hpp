@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/sensor/clock.hpp"
-#include "vkfuse/vk/context.hpp"
 #include "vkfuse/core/fusion.hpp"
-#include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/core/metrics.hpp"
+#include "vkfuse/sensor/clock.hpp"
+#include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sensor.hpp"
 #include "vkfuse/sensor/switching.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/sensor/clock.hpp"
 #include "vkfuse/core/fusion.hpp"
+#include "vkfuse/sensor/clock.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sensor.hpp"
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/core/image.hpp"
+#include "vkfuse/sensor/illumination.hpp"
 
 namespace vkfuse {
 

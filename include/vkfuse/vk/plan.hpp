@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "vkfuse/vk/context.hpp"
 #include "vkfuse/core/fusion.hpp"
 #include "vkfuse/core/image.hpp"
 #include "vkfuse/core/metrics.hpp"
+#include "vkfuse/vk/context.hpp"
 
 namespace vkfuse {
 
