@@ -60,6 +60,7 @@ namespace vkfuse::vk {
     X(vkCmdBindPipeline)                  \
     X(vkCmdPushConstants)                 \
     X(vkCmdDispatch)                      \
+    X(vkCmdDispatchIndirect)              \
     X(vkCmdPipelineBarrier)               \
     X(vkCmdCopyBuffer)                    \
     X(vkCmdFillBuffer)                    \

@@ -9,7 +9,8 @@ Buffer::Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use) : ctx_(&ct
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     bci.size = bytes < 256 ? 256 : bytes;  // never a zero-sized buffer
     bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;  // a skipping plan's dispatch arguments
     bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     check(api.vkCreateBuffer(ctx.device, &bci, nullptr, &buffer_), "vkCreateBuffer");
     try {

@@ -27,6 +27,13 @@ void validate_config(const PlanConfig& c, vk::PlanKind kind) {
     if (c.sensors < 1) throw Error(ErrorKind::InvalidArgument, "plan: sensors must be >= 1");
     if (c.background_diff && !c.want_metrics)
         throw Error(ErrorKind::InvalidArgument, "plan: background_diff needs want_metrics");
+    if (c.skip.policy != SkipPolicy::Off) {
+        if (kind != vk::PlanKind::Fuse || c.input != PixelType::U8)
+            throw Error(ErrorKind::InvalidArgument, "plan: skip " + std::string(to_string(c.skip.policy)) +
+                                                        " needs a fusing plan of 8-bit frames");
+        if (!(c.skip.threshold > 0) || !std::isfinite(c.skip.threshold))
+            throw Error(ErrorKind::InvalidArgument, "plan: skip threshold must be a finite number > 0");
+    }
     // Kernels index with 32-bit integers: keep every buffer below 2^32 floats.
     const double elems = double(c.height) * c.width * c.channels * c.frames * c.sensors;
     if (elems * 2 >= double(std::numeric_limits<std::uint32_t>::max()))
@@ -67,7 +74,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     }
     exponent.assign(S, 0);
     next_exponent.assign(S, 0);
-    if (cfg.background_diff && cfg.input == PixelType::F32) {
+    if (cfg.background_diff && (cfg.input == PixelType::F32 || cfg.skip.policy != SkipPolicy::Off)) {
         background_host.resize(sensor_floats * S);
         background_max.assign(S, 0);
         background_exponent.assign(S, std::nullopt);
@@ -92,6 +99,11 @@ void Plan::Impl::record() {
     addressed = ctx.device_addresses_only || vk::needs_device_addresses(cfg, ctx.properties.limits);
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed);
+    if (cfg.skip.policy != SkipPolicy::Off) {
+        skip.emplace(ctx, cfg, upload, addressed);
+        rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, std::uint32_t(cfg.sensors));
+        background_in_slot.assign(std::size_t(cfg.sensors), -1);
+    }
     vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
@@ -129,6 +141,7 @@ void Plan::Impl::record() {
                        readback.span().sub(partials_offset), packs ? std::optional(image) : std::nullopt);
     rec.finish();
     stage_names = rec.stage_names();
+    if (skip) skip->set_dispatches(rec.sensor_dispatches());
 }
 
 void Plan::Impl::submit_and_wait() {
@@ -238,6 +251,28 @@ void Plan::set_background(int sensor, const FrameView& bg) {
         im.background_exponent[std::size_t(sensor)] = std::nullopt;
     }
     im.background_set[std::size_t(sensor)] = true;
+    if (im.skip) {
+        im.skip->background_changed(sensor);
+        for (int& held : im.background_in_slot)
+            if (held == sensor) held = -1;
+    }
+}
+
+void Plan::set_skip_reference(int sensor, const SkipReference& reference) {
+    auto& im = *impl_;
+    if (!im.skip) throw Error(ErrorKind::InvalidArgument, "plan: created with skip off");
+    if (sensor < 0 || sensor >= im.cfg.sensors)
+        throw Error(ErrorKind::InvalidArgument, "skip reference: sensor " + std::to_string(sensor) + " out of range");
+    im.skip->set_reference(sensor, reference);
+}
+
+SkipOutcome Plan::skip_outcome(int sensor) const {
+    auto& im = *impl_;
+    if (sensor < 0 || sensor >= im.cfg.sensors)
+        throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
+    if (!im.skip) return {};
+    if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: skip_outcome() before run()");
+    return im.skip->outcome(sensor);
 }
 
 namespace {
@@ -307,6 +342,10 @@ void Plan::run(std::span<const FrameView> frames) {
         for (int s = 0; s < c.sensors; ++s)
             if (!im.background_set[std::size_t(s)])
                 throw Error(ErrorKind::InvalidArgument, "plan run: no background set for sensor " + std::to_string(s));
+    if (im.skip)
+        for (int s = 0; s < c.sensors; ++s)
+            if (!im.skip->has_reference(s))
+                throw Error(ErrorKind::InvalidArgument, "plan run: no skip reference set for sensor " + std::to_string(s));
     if (c.input == PixelType::F32) {
         upload_f32(im, frames);
     } else {  // 8-bit frames, in [0, 1] on the device: as they are
@@ -316,7 +355,14 @@ void Plan::run(std::span<const FrameView> frames) {
             dst += f.bytes();
         }
     }
-    im.submit_and_wait();
+    if (im.skip) {
+        const std::vector<int> fused_sensors = im.skip->detect();
+        im.compact(frames, fused_sensors);
+        im.fused_last_run = !fused_sensors.empty();
+    } else {
+        im.fused_last_run = true;
+    }
+    if (im.fused_last_run) im.submit_and_wait();
     im.has_run = true;
     std::fill(im.fused_fresh.begin(), im.fused_fresh.end(), false);
 }
@@ -327,10 +373,11 @@ const Image& Plan::fused(int sensor) const {
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: fused() before run()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
+    if (im.idle(sensor)) return im.skip->fused_reference(sensor);
     auto& img = im.fused[std::size_t(sensor)];
     if (!im.fused_fresh[std::size_t(sensor)]) {
         Image out(im.cfg.height, im.cfg.width, im.cfg.channels);
-        const float* src = static_cast<const float*>(im.readback.mapped()) + std::size_t(sensor) * out.size();
+        const float* src = static_cast<const float*>(im.readback.mapped()) + im.result_slot(sensor) * out.size();
         const int e = im.exponent[std::size_t(sensor)];
         if (e == 0) {  // copied and checked in one pass
             if (vk::copy_magnitude(out.data.data(), src, out.size()) >= vk::kNonFinite)
@@ -355,10 +402,15 @@ Metrics Plan::metrics(int sensor) const {
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: metrics() before run()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
+    if (im.idle(sensor)) {
+        const std::size_t n = std::size_t(im.cfg.height) * im.cfg.width * im.cfg.channels;
+        return im.skip->idle_metrics(
+            sensor, im.cfg.background_diff ? im.background_host.data() + std::size_t(sensor) * n : nullptr);
+    }
     const std::size_t groups = vk::metric_groups(im.cfg), n_floats = groups * vk::kMetricPartialFloats;
     const float* partials = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
                                                            im.partials_offset) +
-                            std::size_t(sensor) * n_floats;
+                            im.result_slot(sensor) * n_floats;
     // Checked before use: std::max(0.0, NaN) below would make a NaN sum a
     // contrast of 0.
     check_device_results(im.cfg, sensor, std::span(partials, n_floats), "a metric sum");
@@ -390,7 +442,7 @@ std::uint64_t Plan::submits() const { return impl_->submits; }
 std::vector<KernelTime> Plan::profile() const {
     auto& im = *impl_;
     if (!im.cfg.profile) throw Error(ErrorKind::InvalidArgument, "plan: created without profile");
-    if (!im.has_run) return {};
+    if (!im.has_run || !im.fused_last_run) return {};
     const std::uint32_t n = std::uint32_t(im.stage_names.size()) + 1;
     const std::vector<std::uint64_t> ticks = im.slot->timestamps(n);
     std::vector<KernelTime> out;

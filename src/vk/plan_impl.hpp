@@ -6,6 +6,7 @@
 
 #include "vk/buffer.hpp"
 #include "vk/command_slot.hpp"
+#include "vk/plan_skip.hpp"
 #include "vk/recorder.hpp"
 #include "vkfuse/vk/plan.hpp"
 
@@ -131,6 +132,14 @@ struct Plan::Impl {
     std::vector<vk::Buffer> buffers;
     std::optional<vk::DescriptorSets> sets;  // the bound kernels' descriptors, written by record()
     bool addressed = false;                  // needs_device_addresses, or ContextOptions::device_addresses
+    // A skipping plan's detection and compaction (vk/plan_skip.hpp); before
+    // `slot`, so the fusion command buffer that reads its indirect arguments
+    // is released first.
+    std::optional<vk::SkipState> skip;
+    // Skipping plans with background_diff: the sensor whose background the
+    // device copy holds in each slot (-1: none, or changed since).
+    std::vector<int> background_in_slot;
+    bool fused_last_run = false;  // the last run() submitted the fusion command buffer
     // After the buffers, so it is released (and a pending submit waited out) first.
     std::optional<vk::CommandSlot> slot;
     std::vector<std::string> stage_names;
@@ -144,7 +153,7 @@ struct Plan::Impl {
     // device times 2^-exponent[s]; its results are multiplied back.
     std::vector<int> exponent;
     std::vector<int> next_exponent;  // run()'s choice, kept only once every sensor passed
-    // Float32 plans with background_diff: the backgrounds as given (planar),
+    // Float32 or skipping plans with background_diff: the backgrounds as given (planar),
     // their largest magnitude (float bits), and the exponent the device copy
     // holds them at (nullopt: not written since set_background).
     std::vector<float> background_host;
@@ -156,6 +165,11 @@ struct Plan::Impl {
     // constructor cannot make.
     static Plan make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind);
     bool brovey() const { return kind == vk::PlanKind::Fuse && cfg.fusion.method == Method::Brovey; }
+    // Where sensor's results lie in the read-back buffer: its slot in the last run.
+    std::size_t result_slot(int sensor) const { return skip ? std::size_t(*skip->slot(sensor)) : std::size_t(sensor); }
+    bool idle(int sensor) const { return skip && !skip->slot(sensor); }
+    // Skipping: the fused sensors' frames and backgrounds into slots 0..F-1.
+    void compact(std::span<const FrameView> frames, const std::vector<int>& fused_sensors);
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 

@@ -87,7 +87,20 @@ void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceS
     check_interface(ctx_, kernel, addressed_ ? 0 : buffers.size(), push.size());
     if (push.size() > 0)
         api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
-    api.vkCmdDispatch(cmd_, gx, gy, gz);
+    if (!indirect_) {
+        api.vkCmdDispatch(cmd_, gx, gy, gz);
+        return;
+    }
+    if (gz % sensors_ != 0 || per_sensor_.size() >= indirect_capacity_)
+        throw Error(ErrorKind::Device, "internal: " + kernel + " cannot be recorded per sensor");
+    api.vkCmdDispatchIndirect(cmd_, indirect_, per_sensor_.size() * sizeof(VkDispatchIndirectCommand));
+    per_sensor_.push_back({gx, gy, gz / sensors_});
+}
+
+void Recorder::compact_sensors(VkBuffer indirect, std::uint32_t capacity, std::uint32_t sensors) {
+    indirect_ = indirect;
+    indirect_capacity_ = capacity;
+    sensors_ = sensors;
 }
 
 void Recorder::mark(const std::string& name) {

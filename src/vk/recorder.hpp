@@ -1,6 +1,7 @@
 // Records a plan's dispatches into one command buffer: a barrier between
 // dependent dispatches and, when profiling, a timestamp after each stage.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,17 @@ public:
                   std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
                   std::span<const std::uint32_t> specialization = {});
 
+    // Sensor-compacting recording (a skipping plan, vk/plan_skip.cpp): from
+    // here on every dispatch is recorded as vkCmdDispatchIndirect from the
+    // next VkDispatchIndirectCommand of `indirect` (room for `capacity`), and
+    // its groups are kept with z divided by `sensors`. Before each submit the
+    // host writes z = fused sensors x z per sensor: the fused sensors' data
+    // sits in the first slots of every buffer, and each kernel finds its
+    // sensor in workgroup z, sensor-major.
+    void compact_sensors(VkBuffer indirect, std::uint32_t capacity, std::uint32_t sensors);
+    // The groups of each dispatch recorded so far in compacting mode, z per sensor.
+    const std::vector<std::array<std::uint32_t, 3>>& sensor_dispatches() const { return per_sensor_; }
+
     // Closes the stage begun after the previous mark: its GPU time is reported under name.
     void mark(const std::string& name);
     void finish();  // makes shader writes visible to the host and ends the buffer
@@ -47,6 +59,9 @@ private:
     bool addressed_;
     bool first_ = true;
     std::vector<std::string> names_;
+    VkBuffer indirect_ = VK_NULL_HANDLE;
+    std::uint32_t indirect_capacity_ = 0, sensors_ = 1;
+    std::vector<std::array<std::uint32_t, 3>> per_sensor_;
 
     void barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
                  VkAccessFlags dst_access);

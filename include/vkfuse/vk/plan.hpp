@@ -10,6 +10,7 @@
 #include "vkfuse/core/fusion.hpp"
 #include "vkfuse/core/image.hpp"
 #include "vkfuse/core/metrics.hpp"
+#include "vkfuse/core/skip.hpp"
 #include "vkfuse/vk/context.hpp"
 
 namespace vkfuse {
@@ -44,6 +45,18 @@ struct PlanConfig {
     // false: nothing is fused; each sensor's one frame (frames = 1) is read
     // back as it is and scored (what `vkfuse metrics` does).
     bool fuse = true;
+    // Skipping sensors whose frames did not change (docs/spec.md,
+    // "Skipping"): needs fuse and 8-bit frames, and a reference per sensor
+    // (Plan::set_skip_reference) before run().
+    SkipConfig skip = {};
+};
+
+// How a skipping plan treated one sensor in the last run().
+struct SkipOutcome {
+    bool idle = false;             // not fused: fused() is the fused background, metrics() its cached metrics
+    double fused_fraction = 1;     // share of the frame's tiles fused this run
+    double changed_fraction = 1;   // share of tiles whose score exceeded the threshold
+    double score = 0;              // the largest tile score (core/skip.hpp)
 };
 
 // Time one kernel (or a group of dispatches) took on the device in the last run.
@@ -77,6 +90,13 @@ public:
     // below 2^-64 (8-bit frames are never scaled, see run()).
     void set_background(int sensor, const FrameView& background);
 
+    // The scene a skipping plan compares sensor's frames with (core/skip.hpp):
+    // K means and deviations of the frames' shape. The reference is fused
+    // here, once, with the double-precision reference path: that image is the
+    // result of every cycle the sensor is idle. Throws Error naming the sensor
+    // for a wrong count, shape or a non-finite value.
+    void set_skip_reference(int sensor, const SkipReference& reference);
+
     // frames: sensors x frames views, sensor-major (sensor s, frame k at
     // s * frames + k), each height x width x channels of type config().input.
     // F32 frames may hold any finite magnitude, subnormal to FLT_MAX: where a
@@ -92,7 +112,11 @@ public:
     const Image& fused(int sensor) const;  // requires want_fused
     Metrics metrics(int sensor) const;     // requires want_metrics
     std::vector<KernelTime> profile() const;  // requires profile
-    // Command buffers submitted so far: one per run(), whatever the sensor count.
+    SkipOutcome skip_outcome(int sensor) const;  // idle false, fractions 1 when skip is off
+    // Fusion command buffers submitted so far: one per run(), whatever the
+    // sensor count. A skipping plan submits its change detection first in
+    // every run, and the fusion only when some sensor changed: runs in which
+    // every sensor was idle add none.
     std::uint64_t submits() const;
 
     struct Impl;

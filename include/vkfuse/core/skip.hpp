@@ -1,0 +1,71 @@
+// vkfuse/core/skip.hpp - skipping what a scene does not need (docs/spec.md,
+// "Skipping"): a cycle whose frames stay within the sensor's background noise
+// is not fused; its result is the fused background.
+#pragma once
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "vkfuse/core/image.hpp"
+
+namespace vkfuse {
+
+enum class SkipPolicy {
+    Off,   // every cycle of every sensor is fused
+    Idle,  // a sensor none of whose tiles changed is not fused (it is "idle")
+};
+std::string_view to_string(SkipPolicy policy);  // "off", "idle"
+std::optional<SkipPolicy> parse_skip_policy(std::string_view text);
+
+// Change detection works on square tiles of this many pixels a side (the
+// last row and column of tiles may be cut short by the frame's edge).
+inline constexpr int kSkipTile = 32;
+
+// The noise of a tile never counts as less than half an 8-bit step: a
+// background of identical frames (a noiseless camera) still lets a sample
+// move by rounding without its tile counting as changed.
+inline constexpr double kMinTileNoise = 0.5 / 255.0;
+
+struct SkipConfig {
+    SkipPolicy policy = SkipPolicy::Off;
+    // k: a tile changed when one of its samples, in any frame of the cycle,
+    // lies more than k times the tile's noise from its background mean.
+    // The default keeps a still, untouched simulated DIGIT idle (docs/spec.md).
+    double threshold = 8.0;
+};
+
+// What a sensor's frames are compared with: for each frame k of a cycle (lit
+// by setting k of the sequence), the per-pixel mean of background frames
+// under that setting and their per-pixel standard deviation. Both are float32
+// images of the frames' shape, values on the frames' [0, 1] scale.
+struct SkipReference {
+    std::vector<Image> mean;       // K images
+    std::vector<Image> deviation;  // K images
+};
+
+// The per-pixel, per-channel sample standard deviation (n - 1) of frames
+// about their mean; zero for a single frame.
+Image background_deviation(std::span<const FrameView> frames, const Image& mean);
+
+// Tiles across and down a frame of width x height.
+int skip_tiles_x(int width);
+int skip_tiles_y(int height);
+
+// Each tile's noise under each setting: the root mean square of the
+// deviation over the tile's samples, at least kMinTileNoise. K x tiles
+// values, setting-major (tile t of setting k at k * tiles + t), tiles row-major.
+std::vector<float> tile_noise(const SkipReference& reference);
+
+// The change score of every tile (row-major): the largest |frame_k - mean_k|
+// over the tile's samples and the K frames, divided by the tile's noise
+// under setting k. In double precision: what the device's scores are tested
+// against. Frames are U8 (v / 255) or F32.
+std::vector<double> change_scores_reference(std::span<const FrameView> frames, const SkipReference& reference);
+
+// Throws Error(InvalidArgument) naming `what` unless reference holds K
+// finite images of shape height x width x channels in both fields.
+void check_skip_reference(const SkipReference& reference, int height, int width, int channels, int frames,
+                          const std::string_view what);
+
+}  // namespace vkfuse

@@ -1,0 +1,137 @@
+// A skipping plan's change detection and sensor compaction (vk/plan_skip.hpp).
+#include "vk/plan_skip.hpp"
+
+#include <cstring>
+#include <string>
+
+#include "vk/plan_impl.hpp"
+#include "vk/recorder.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
+
+namespace vkfuse::vk {
+
+SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& upload, bool addressed)
+    : ctx_(ctx),
+      cfg_(cfg),
+      tiles_x_(std::uint32_t(skip_tiles_x(cfg.width))),
+      tiles_y_(std::uint32_t(skip_tiles_y(cfg.height))) {
+    const std::size_t S = std::size_t(cfg.sensors), K = std::size_t(cfg.frames), tiles = tiles_x_ * tiles_y_;
+    means_ = Buffer(ctx, S * K * std::size_t(cfg.channels) * std::size_t(cfg.height) * std::size_t(cfg.width) * 4,
+                    MemoryUse::Upload);
+    inv_noise_ = Buffer(ctx, S * K * tiles * 4, MemoryUse::Upload);
+    scores_ = Buffer(ctx, S * tiles * 4, MemoryUse::Readback);
+    indirect_ = Buffer(ctx, kMaxDispatches * sizeof(VkDispatchIndirectCommand), MemoryUse::Upload);
+    reference_set_.assign(S, false);
+    fused_.resize(S);
+    idle_metrics_.resize(S);
+    outcomes_.resize(S);
+    slot_.resize(S);
+    record(upload, addressed);
+}
+
+void SkipState::record(const Buffer& upload, bool addressed) {
+    sets_.emplace(ctx_);
+    detect_.emplace(ctx_, 0);
+    Recorder rec(ctx_, detect_->cmd(), VK_NULL_HANDLE, "", *sets_, addressed);
+    const std::uint32_t pixels = std::uint32_t(cfg_.width) * std::uint32_t(cfg_.height);
+    const DeviceSpan frames = upload.span(), means = means_.span();
+    rec.dispatch("change_detect", {frames, frames, means, means, inv_noise_.span(), scores_.span()},
+                 PushConstants()
+                     .u32(pixels)
+                     .u32(std::uint32_t(cfg_.channels))
+                     .u32(cfg_.input == PixelType::U8)
+                     .u32(std::uint32_t(cfg_.width))
+                     .u32(std::uint32_t(cfg_.height))
+                     .u32(std::uint32_t(cfg_.frames))
+                     .u32(cfg_.width % 4 == 0),
+                 tiles_x_, tiles_y_, std::uint32_t(cfg_.sensors));
+    rec.finish();
+}
+
+void SkipState::set_reference(int sensor, const SkipReference& reference) {
+    const std::string what = "skip reference of sensor " + std::to_string(sensor);
+    check_skip_reference(reference, cfg_.height, cfg_.width, cfg_.channels, cfg_.frames, what);
+    const std::size_t K = std::size_t(cfg_.frames), C = std::size_t(cfg_.channels);
+    const std::size_t pixels = std::size_t(cfg_.height) * std::size_t(cfg_.width), tiles = tiles_x_ * tiles_y_;
+    float* means = static_cast<float*>(means_.mapped()) + std::size_t(sensor) * K * C * pixels;
+    for (std::size_t k = 0; k < K; ++k)  // HWC -> planar, plane k * C + c
+        for (std::size_t p = 0; p < pixels; ++p)
+            for (std::size_t c = 0; c < C; ++c) means[(k * C + c) * pixels + p] = reference.mean[k].data[p * C + c];
+    const std::vector<float> noise = tile_noise(reference);
+    float* inv = static_cast<float*>(inv_noise_.mapped()) + std::size_t(sensor) * K * tiles;
+    for (std::size_t i = 0; i < noise.size(); ++i) inv[i] = 1.0f / noise[i];
+    std::vector<ImageD> means_d;
+    for (const Image& m : reference.mean) means_d.push_back(convert<double>(m));
+    fused_[std::size_t(sensor)] = convert<float>(fuse_reference(means_d, cfg_.fusion));
+    idle_metrics_[std::size_t(sensor)].reset();
+    reference_set_[std::size_t(sensor)] = true;
+}
+
+std::vector<int> SkipState::detect() {
+    detect_->submit_and_wait();
+    const std::size_t tiles = tiles_x_ * tiles_y_;
+    const float* scores = static_cast<const float*>(scores_.mapped());
+    std::vector<int> fused;
+    for (int s = 0; s < cfg_.sensors; ++s) {
+        std::size_t changed = 0;
+        float top = 0;
+        for (std::size_t t = 0; t < tiles; ++t) {
+            const float v = scores[std::size_t(s) * tiles + t];
+            // A NaN score (NaN never reaches an 8-bit plan) would count as changed.
+            if (!(v <= cfg_.skip.threshold)) ++changed;
+            top = std::max(top, v);
+        }
+        SkipOutcome& o = outcomes_[std::size_t(s)];
+        o.idle = changed == 0;
+        o.fused_fraction = o.idle ? 0.0 : 1.0;
+        o.changed_fraction = double(changed) / double(tiles);
+        o.score = top;
+        slot_[std::size_t(s)] = o.idle ? std::nullopt : std::optional<int>(int(fused.size()));
+        if (!o.idle) fused.push_back(s);
+    }
+    auto* args = static_cast<VkDispatchIndirectCommand*>(indirect_.mapped());
+    for (std::size_t d = 0; d < dispatches_.size(); ++d)
+        args[d] = {dispatches_[d][0], dispatches_[d][1], dispatches_[d][2] * std::uint32_t(fused.size())};
+    return fused;
+}
+
+Metrics SkipState::idle_metrics(int sensor, const float* planar_background) {
+    std::optional<Metrics>& cached = idle_metrics_.at(std::size_t(sensor));
+    if (cached) return *cached;
+    const ImageD image = convert<double>(fused_.at(std::size_t(sensor)));
+    if (!planar_background) {
+        cached = metrics_reference(image);
+        return *cached;
+    }
+    ImageD background(image.height, image.width, image.channels);
+    const std::size_t pixels = image.pixels(), C = std::size_t(image.channels);
+    for (std::size_t p = 0; p < pixels; ++p)
+        for (std::size_t c = 0; c < C; ++c) background.data[p * C + c] = planar_background[c * pixels + p];
+    cached = metrics_reference(image, &background);
+    return *cached;
+}
+
+}  // namespace vkfuse::vk
+
+namespace vkfuse {
+
+// Slot j < sensor s always, and slots fill in sensor order, so a sensor's
+// frames are never overwritten before they are moved: they are copied again
+// from the caller's views, which the detection already read.
+void Plan::Impl::compact(std::span<const FrameView> frames, const std::vector<int>& fused_sensors) {
+    const std::size_t K = std::size_t(cfg.frames);
+    const std::size_t n = std::size_t(cfg.height) * std::size_t(cfg.width) * std::size_t(cfg.channels);
+    auto* upload_bytes = static_cast<std::uint8_t*>(upload.mapped());
+    for (std::size_t j = 0; j < fused_sensors.size(); ++j) {
+        const std::size_t s = std::size_t(fused_sensors[j]);
+        if (s != j)
+            for (std::size_t k = 0; k < K; ++k)
+                std::memcpy(upload_bytes + (j * K + k) * n, frames[s * K + k].data, n);
+        if (!cfg.background_diff || background_in_slot[j] == int(s)) continue;
+        std::memcpy(static_cast<float*>(background.mapped()) + j * n, background_host.data() + s * n, n * sizeof(float));
+        background_in_slot[j] = int(s);
+    }
+}
+
+}  // namespace vkfuse

@@ -1,0 +1,225 @@
+// Skipping plans (PlanConfig::skip): the device's change scores against the
+// CPU twin, idle sensors' results, and fused sensors exactly as a plan that
+// skips nothing fuses them, whatever slot they were compacted into.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/method_table.hpp"
+#include "expect_error.hpp"
+#include "vk_fixture.hpp"
+#include "vkfuse/core/reference.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+// A scene: K background means with a per-pixel deviation, and frames drawn
+// from it with noise of that deviation.
+struct Scene {
+    int h, w, c, k;
+    SkipReference reference;
+};
+
+Scene make_scene(int h, int w, int c, int k, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> level(0.2f, 0.8f), spread(1.0f / 255, 3.0f / 255);
+    Scene s{h, w, c, k, {}};
+    for (int i = 0; i < k; ++i) {
+        Image mean(h, w, c), dev(h, w, c);
+        for (float& v : mean.data) v = level(rng);
+        for (float& v : dev.data) v = spread(rng);
+        s.reference.mean.push_back(std::move(mean));
+        s.reference.deviation.push_back(std::move(dev));
+    }
+    return s;
+}
+
+// K frames of the scene, noise of the given number of deviations at most,
+// and where `press` is set a square of pixels moved by 0.3.
+std::vector<Bytes> frames_of(const Scene& s, std::uint32_t seed, double noise, bool press) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Bytes> out;
+    for (int k = 0; k < s.k; ++k) {
+        Bytes f(std::size_t(s.h) * s.w * s.c);
+        for (int y = 0; y < s.h; ++y)
+            for (int x = 0; x < s.w; ++x)
+                for (int ch = 0; ch < s.c; ++ch) {
+                    const std::size_t i = (std::size_t(y) * s.w + x) * s.c + ch;
+                    double v = s.reference.mean[k].data[i] + noise * u(rng) * s.reference.deviation[k].data[i];
+                    if (press && y >= s.h / 3 && y < s.h / 2 && x >= s.w / 3 && x < s.w / 2) v += 0.3;
+                    f[i] = std::uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255));
+                }
+        out.push_back(std::move(f));
+    }
+    return out;
+}
+
+std::vector<FrameView> views(const Scene& s, const std::vector<std::vector<Bytes>>& sensors) {
+    std::vector<FrameView> v;
+    for (const auto& frames : sensors)
+        for (const Bytes& f : frames) v.push_back({f.data(), s.h, s.w, s.c, PixelType::U8});
+    return v;
+}
+
+PlanConfig skip_config(const Scene& s, int sensors, FusionSpec spec, SkipPolicy policy, double threshold) {
+    PlanConfig cfg;
+    cfg.fusion = spec;
+    cfg.height = s.h;
+    cfg.width = s.w;
+    cfg.channels = s.c;
+    cfg.frames = s.k;
+    cfg.sensors = sensors;
+    cfg.input = PixelType::U8;
+    cfg.background_diff = true;
+    cfg.skip = {policy, threshold};
+    return cfg;
+}
+
+// Small frames carry few wavelet levels.
+FusionSpec haar() {
+    FusionSpec spec;
+    spec.wavelet = Wavelet::Haar;
+    spec.levels = 2;
+    return spec;
+}
+
+class VulkanSkip : public VulkanTest {};
+
+// The largest tile score and the share of tiles over a threshold, against
+// the double-precision reference, with rows of whole quads and without.
+TEST_F(VulkanSkip, ScoresMatchTheReference) {
+    for (auto [h, w] : {std::pair{64, 96}, std::pair{75, 83}}) {
+        const Scene scene = make_scene(h, w, 3, 2, 7);
+        const std::vector<std::vector<Bytes>> sensors = {frames_of(scene, 1, 4.0, false), frames_of(scene, 2, 4.0, true)};
+        for (int s = 0; s < 2; ++s) {
+            const std::vector<FrameView> all = views(scene, sensors);
+            const std::vector<double> ref =
+                change_scores_reference(std::span(all).subspan(std::size_t(s) * 2, 2), scene.reference);
+            // A threshold between two scores, far from both: the count is exact.
+            std::vector<double> sorted = ref;
+            std::sort(sorted.begin(), sorted.end());
+            const double threshold = (sorted[sorted.size() / 2] + sorted[sorted.size() / 2 + 1]) / 2;
+            ASSERT_GT(sorted[sorted.size() / 2 + 1] - sorted[sorted.size() / 2], 1e-4) << "pick another seed";
+            Plan plan(ctx(), skip_config(scene, 2, haar(), SkipPolicy::Idle, threshold));
+            for (int t = 0; t < 2; ++t) {
+                plan.set_skip_reference(t, scene.reference);
+                plan.set_background(t, FrameView::of(scene.reference.mean[0]));
+            }
+            plan.run(all);
+            const SkipOutcome o = plan.skip_outcome(s);
+            EXPECT_NEAR(o.score, sorted.back(), 1e-5 * sorted.back()) << h << "x" << w << " sensor " << s;
+            const auto over = std::count_if(ref.begin(), ref.end(), [&](double v) { return v > threshold; });
+            EXPECT_DOUBLE_EQ(o.changed_fraction, double(over) / double(ref.size())) << h << "x" << w << " sensor " << s;
+            EXPECT_FALSE(o.idle);
+        }
+    }
+}
+
+// Three sensors, one pressed: the pressed one is fused exactly as a plan
+// that skips nothing fuses it (from slot 0, not its own slot 1), the
+// others return the fused reference and its metrics. Then the press moves
+// to sensor 2 while sensor 1 goes idle. Every method's row at its defaults.
+TEST_F(VulkanSkip, IdleSensorsReturnTheFusedReferenceAndPressedOnesFuseExactly) {
+    const Scene scene = make_scene(96, 128, 3, 3, 11);
+    const Image background = convert<float>(fuse_reference(
+        std::vector<ImageD>{convert<double>(scene.reference.mean[0]), convert<double>(scene.reference.mean[1]),
+                            convert<double>(scene.reference.mean[2])},
+        FusionSpec{}));
+    for (const core::MethodInfo& row : core::method_table()) {
+        FusionSpec spec;
+        spec.method = row.method;
+        Plan skipping(ctx(), skip_config(scene, 3, spec, SkipPolicy::Idle, 8.0));
+        Plan full(ctx(), skip_config(scene, 3, spec, SkipPolicy::Off, 8.0));
+        for (int s = 0; s < 3; ++s) {
+            skipping.set_skip_reference(s, scene.reference);
+            skipping.set_background(s, FrameView::of(background));
+            full.set_background(s, FrameView::of(background));
+        }
+        std::vector<ImageD> means;
+        for (const Image& m : scene.reference.mean) means.push_back(convert<double>(m));
+        const ImageD fused_reference = fuse_reference(means, spec);
+        for (int pressed : {1, 2}) {
+            std::vector<std::vector<Bytes>> sensors;
+            for (int s = 0; s < 3; ++s) sensors.push_back(frames_of(scene, std::uint32_t(10 * pressed + s), 3.0, s == pressed));
+            const std::vector<FrameView> all = views(scene, sensors);
+            const std::uint64_t before = skipping.submits();
+            skipping.run(all);
+            full.run(all);
+            EXPECT_EQ(skipping.submits(), before + 1);
+            for (int s = 0; s < 3; ++s) {
+                const std::string where = std::string(row.name) + " sensor " + std::to_string(s);
+                const SkipOutcome o = skipping.skip_outcome(s);
+                EXPECT_EQ(o.idle, s != pressed) << where << " score " << o.score;
+                if (s == pressed) {
+                    EXPECT_EQ(o.fused_fraction, 1.0) << where;
+                    EXPECT_EQ(skipping.fused(s).data, full.fused(s).data) << where;
+                    EXPECT_EQ(skipping.metrics(s).sharpness, full.metrics(s).sharpness) << where;
+                    EXPECT_EQ(skipping.metrics(s).background_diff, full.metrics(s).background_diff) << where;
+                    continue;
+                }
+                EXPECT_EQ(o.fused_fraction, 0.0) << where;
+                EXPECT_EQ(skipping.fused(s).data, convert<float>(fused_reference).data) << where;
+                // Its metrics: those of that image, against the background that was set.
+                const Metrics m = skipping.metrics(s);
+                const ImageD background_d = convert<double>(background);
+                const Metrics expected = metrics_reference(convert<double>(convert<float>(fused_reference)), &background_d);
+                EXPECT_EQ(m.sharpness, expected.sharpness) << where;
+                EXPECT_EQ(m.contrast, expected.contrast) << where;
+                ASSERT_TRUE(m.background_diff) << where;
+                EXPECT_EQ(*m.background_diff, *expected.background_diff) << where;
+            }
+        }
+    }
+}
+
+// A cycle in which nothing changed submits no fusion at all.
+TEST_F(VulkanSkip, AllIdleSubmitsNoFusion) {
+    const Scene scene = make_scene(32, 40, 3, 2, 5);
+    Plan plan(ctx(), skip_config(scene, 2, haar(), SkipPolicy::Idle, 8.0));
+    for (int s = 0; s < 2; ++s) {
+        plan.set_skip_reference(s, scene.reference);
+        plan.set_background(s, FrameView::of(scene.reference.mean[0]));
+    }
+    const std::vector<std::vector<Bytes>> sensors = {frames_of(scene, 3, 2.0, false), frames_of(scene, 4, 2.0, false)};
+    plan.run(views(scene, sensors));
+    EXPECT_EQ(plan.submits(), 0u);
+    for (int s = 0; s < 2; ++s) {
+        EXPECT_TRUE(plan.skip_outcome(s).idle);
+        EXPECT_EQ(plan.skip_outcome(s).changed_fraction, 0.0);
+        EXPECT_LT(plan.skip_outcome(s).score, 8.0);
+    }
+}
+
+TEST_F(VulkanSkip, BadConfigurationAndReferencesAreRefused) {
+    const Scene scene = make_scene(16, 24, 3, 2, 3);
+    PlanConfig f32 = skip_config(scene, 1, haar(), SkipPolicy::Idle, 8.0);
+    f32.input = PixelType::F32;
+    expect_error([&] { Plan p(ctx(), f32); }, "plan", ErrorKind::InvalidArgument, "8-bit frames");
+    PlanConfig bad = skip_config(scene, 1, haar(), SkipPolicy::Idle, std::nan(""));
+    expect_error([&] { Plan p(ctx(), bad); }, "plan", ErrorKind::InvalidArgument, "threshold");
+    Plan plan(ctx(), skip_config(scene, 1, haar(), SkipPolicy::Idle, 8.0));
+    plan.set_background(0, FrameView::of(scene.reference.mean[0]));
+    const std::vector<std::vector<Bytes>> sensors = {frames_of(scene, 1, 1.0, false)};
+    expect_error([&] { plan.run(views(scene, sensors)); }, "plan run", ErrorKind::InvalidArgument,
+                 "no skip reference set for sensor 0");
+    SkipReference short_ref = scene.reference;
+    short_ref.mean.pop_back();
+    expect_error([&] { plan.set_skip_reference(0, short_ref); }, "skip reference of sensor 0",
+                 ErrorKind::InvalidArgument, "1 means and 2 deviations for 2 frames");
+    SkipReference nan_ref = scene.reference;
+    nan_ref.deviation[1].data[5] = std::nanf("");
+    expect_error([&] { plan.set_skip_reference(0, nan_ref); }, "skip reference of sensor 0", ErrorKind::Numeric,
+                 "NaN or Inf");
+    Plan unskipping(ctx(), skip_config(scene, 1, haar(), SkipPolicy::Off, 8.0));
+    expect_error([&] { unskipping.set_skip_reference(0, scene.reference); }, "plan", ErrorKind::InvalidArgument,
+                 "skip off");
+}
+
+}  // namespace
+}  // namespace vkfuse::test
