@@ -2,70 +2,62 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 // Change detection (docs/spec.md, "Skipping"; core/skip.cpp is its CPU twin):
-// one workgroup per 32 x 32 tile (x, y) of sensor z. Each invocation takes 4
-// neighbouring pixels of one tile row and, over the K frames of the cycle and
-// every channel, the largest |frame - background mean| times the tile's
-// inverse noise under that frame's setting; the group's largest is the tile's
-// score. Frames are read as uploaded (frames.glsl), once; the means are
-// planar float32, plane (s * K + k) * C + c, read as vec4 where planes hold
-// whole quads.
-#define BUFFERS(X) X(0, uint, frame_words) X(1, vec4, frame_quads) X(2, float, means) X(3, vec4, means4) \
-    X(4, float, inv_noise) X(5, float, scores)
+// one workgroup per 32 x 32 tile (x, y) of sensor z, one invocation per row of
+// the tile. Each takes, over the K frames of the cycle and every channel, the
+// largest |frame - background mean| times the tile's inverse noise under that
+// frame's setting; the tile's score is the largest of its rows, taken with
+// atomicMax on its bits in the zeroed score buffer (scores are never
+// negative, and non-negative floats order as their bits do: on lavapipe that
+// costs less than a reduction through shared memory, whose barriers dominate
+// a kernel this light). Frames are 8-bit, as uploaded (HWC, 4 samples a
+// word); the means are 16-bit fixed point in the same order (an 8-bit level
+// times 256, 2 samples a word), so a row is read as whole words and compared
+// in integers: 8 C words of frame and 16 C of means for its 32 C samples.
+#define BUFFERS(X) X(0, uint, frame_words) X(1, uint, mean_words) X(2, float, inv_noise) X(3, uint, score_bits)
 #include "bindings.glsl"
-layout(local_size_x = 256) in;
+layout(local_size_x = 32) in;
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
-    uint pixels;
-    uint channels;
-    uint is_u8;
     uint width;
     uint height;
+    uint channels;
     uint frames;   // K
-    uint quads;    // pixels % 4 == 0 and width % 4 == 0: a 4-pixel run is one quad
+    uint aligned;  // width % 4 == 0: a row's samples fill whole words
 } pc;
-#define VKFUSE_READS_FRAMES
-#include "frames.glsl"
 
 const uint TILE = 32u;
-shared float group_max[256];
 
-float quad_deviation(vec4 v, vec4 m) {
-    vec4 d = abs(v - m);
-    return max(max(d.x, d.y), max(d.z, d.w));
+uint frame_byte(uint i) { return (BUF(frame_words).v[i >> 2u] >> ((i & 3u) * 8u)) & 255u; }
+uint mean_u16(uint i) { return (BUF(mean_words).v[i >> 1u] >> ((i & 1u) * 16u)) & 65535u; }
+uint distance(uint frame_level, uint mean) {
+    uint f = frame_level << 8u;
+    return f > mean ? f - mean : mean - f;
 }
 
+// Invocation r takes row r of the tile: up to 32 pixels, 32 C samples a frame.
 void main() {
-    uint s = gl_WorkGroupID.z, K = pc.frames, C = pc.channels, id = gl_LocalInvocationID.x;
-    uint tiles_x = gl_NumWorkGroups.x, tile = gl_WorkGroupID.y * tiles_x + gl_WorkGroupID.x;
-    uint y = gl_WorkGroupID.y * TILE + id / 8u, x = gl_WorkGroupID.x * TILE + (id % 8u) * 4u;
+    uint s = gl_WorkGroupID.z, K = pc.frames, C = pc.channels;
+    uint tiles = gl_NumWorkGroups.x * gl_NumWorkGroups.y, tile = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    uint y = gl_WorkGroupID.y * TILE + gl_LocalInvocationID.x, x = gl_WorkGroupID.x * TILE;
+    if (y >= pc.height) return;
+    uint n = min(TILE, pc.width - x) * C;  // samples of this row in the tile
+    uint run = (y * pc.width + x) * C, frame_samples = pc.width * pc.height * C;
     float score = 0.0;
-    if (y < pc.height && x < pc.width) {
-        uint p = y * pc.width + x;
-        for (uint k = 0u; k < K; ++k) {
-            uint f = s * K + k;
-            float inv = BUF(inv_noise).v[f * tiles_x * gl_NumWorkGroups.y + tile];
-            float worst = 0.0;
-            if (pc.quads != 0u) {
-                Quad q = frame_quad(f, p / 4u);
-                uint m = f * C * (pc.pixels / 4u) + p / 4u, stride = pc.pixels / 4u;
-                worst = quad_deviation(q.c0, BUF(means4).v[m]);
-                if (C == 3u) {
-                    worst = max(worst, quad_deviation(q.c1, BUF(means4).v[m + stride]));
-                    worst = max(worst, quad_deviation(q.c2, BUF(means4).v[m + 2u * stride]));
-                }
-            } else {
-                for (uint j = 0u; j < 4u && x + j < pc.width; ++j)
-                    for (uint c = 0u; c < C; ++c)
-                        worst = max(worst, abs(frame_sample(f, p + j, c) - BUF(means).v[(f * C + c) * pc.pixels + p + j]));
+    for (uint k = 0u; k < K; ++k) {
+        uint f = s * K + k, first = f * frame_samples + run, worst = 0u;
+        if (pc.aligned != 0u) {  // n / 4 words of frame, n / 2 of means
+            for (uint w = 0u; w < n / 4u; ++w) {
+                uint bytes = BUF(frame_words).v[first / 4u + w];
+                uint lo = BUF(mean_words).v[first / 2u + 2u * w], hi = BUF(mean_words).v[first / 2u + 2u * w + 1u];
+                worst = max(worst, distance(bytes & 255u, lo & 65535u));
+                worst = max(worst, distance((bytes >> 8u) & 255u, lo >> 16u));
+                worst = max(worst, distance((bytes >> 16u) & 255u, hi & 65535u));
+                worst = max(worst, distance(bytes >> 24u, hi >> 16u));
             }
-            score = max(score, worst * inv);
+        } else {
+            for (uint j = 0u; j < n; ++j) worst = max(worst, distance(frame_byte(first + j), mean_u16(first + j)));
         }
+        score = max(score, float(worst) * BUF(inv_noise).v[f * tiles + tile]);
     }
-    group_max[id] = score;
-    barrier();
-    for (uint half_n = 128u; half_n > 0u; half_n >>= 1u) {
-        if (id < half_n) group_max[id] = max(group_max[id], group_max[id + half_n]);
-        barrier();
-    }
-    if (id == 0u) BUF(scores).v[s * tiles_x * gl_NumWorkGroups.y + tile] = group_max[0];
+    if (score > 0.0) atomicMax(BUF(score_bits).v[s * tiles + tile], floatBitsToUint(score));
 }

@@ -76,13 +76,14 @@ SensorCycle not_ok(int sensor, SensorStatus status, const std::string& error) {
 //  - SIM-0003 fused cycles 0 and 1 at 0.5 and 0.75 (4 per second), then failed.
 // Capture waits 10, 20, ..., 60 ms; every fuse 20 ms; writes 0, 5, ..., 25 ms.
 struct Synthetic {
-    RunStats stats{3};
+    RunStats stats{3, SkipConfig{SkipPolicy::Idle, 6.5}};
     std::vector<CycleResult> cycles;
     Synthetic() {
         for (int c = 0; c < 6; ++c) {
             CycleResult r;
             r.cycle = std::uint64_t(c);
             r.sensors.push_back(ok(0, 1.0 + 0.1 * c));
+            if (c >= 3) r.sensors.back().skip = {true, 0.0, 0.0, 1.5};  // SIM-0001 idle from cycle 3
             r.sensors.push_back(c == 2 ? not_ok(1, SensorStatus::Timeout, "SIM-0002: no frames within 5 s")
                                        : ok(1, 2.0 + 0.04 * c));
             r.sensors.push_back(c < 2 ? ok(2, 0.5 + 0.25 * c)
@@ -113,6 +114,9 @@ TEST(CliRunStats, CountsAndSensorClockRates) {
     EXPECT_NEAR(number_at(json, "capture"), (10 + 20 + 30 + 40 + 50 + 60) / 6.0, 1e-9) << json;  // ms per cycle
     EXPECT_NEAR(number_at(json, "fuse"), 20.0, 1e-9) << json;
     EXPECT_NEAR(number_at(json, "write"), (0 + 5 + 10 + 15 + 20 + 25) / 6.0, 1e-9) << json;
+    EXPECT_NE(json.find("\"skip\": {\"mode\": \"idle\", \"threshold\": 6.5"), std::string::npos) << json;
+    EXPECT_NEAR(number_at(json, "idle_fraction"), 3.0 / 13, 1e-12) << json;
+    EXPECT_NEAR(number_at(json, "fused_fraction"), 10.0 / 13, 1e-12) << json;
     EXPECT_NE(json.find("\"errors\": [\"SIM-0002: no frames within 5 s\", \"SIM-0003: USB transfer failed\"]"),
               std::string::npos)
         << json;
@@ -148,7 +152,7 @@ TEST(CliRunStats, ProgressLineShowsTheLastCycle) {
 // One sensor fused once: no interval, so no sensor-clock rate; the rates over
 // no sensor with two fused cycles are 0, not NaN or Inf.
 TEST(CliRunStats, NoRateFromASingleFusedCycle) {
-    RunStats stats(3);
+    RunStats stats(3, SkipConfig{});
     CycleResult r;
     r.sensors = {ok(0, 1.0), not_ok(1, SensorStatus::Timeout, "SIM-0002: late"),
                  not_ok(2, SensorStatus::Timeout, "SIM-0003: late")};

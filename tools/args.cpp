@@ -121,13 +121,13 @@ int parse_count(std::string_view option, const std::string& text) {
     return value;
 }
 
-double parse_seconds(std::string_view option, const std::string& text) {
+double parse_positive_number(std::string_view option, const std::string& text, std::string_view unit) {
     double value = 0;
     const char* end = text.data() + text.size();
     auto [ptr, ec] = std::from_chars(text.data(), end, value);
     if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value) || value <= 0)
         throw Error(ErrorKind::InvalidArgument,
-                    std::string(option) + " " + text + ": expected a positive number of seconds");
+                    std::string(option) + " " + text + ": expected a positive number" + std::string(unit));
     return value;
 }
 

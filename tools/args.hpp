@@ -65,7 +65,11 @@ std::string help_text(const CommandSpec& spec);
 int parse_positive_int(std::string_view option, const std::string& text);
 // A decimal int >= 0; throws Error(InvalidArgument) "--frames x: expected a non-negative integer".
 int parse_count(std::string_view option, const std::string& text);
-// A finite decimal number > 0; throws Error(InvalidArgument) "--duration x: expected a positive number of seconds".
-double parse_seconds(std::string_view option, const std::string& text);
+// A finite decimal number > 0; throws Error(InvalidArgument) "--skip-threshold x: expected a positive number".
+double parse_positive_number(std::string_view option, const std::string& text, std::string_view unit = "");
+// The same, "--duration x: expected a positive number of seconds".
+inline double parse_seconds(std::string_view option, const std::string& text) {
+    return parse_positive_number(option, text, " of seconds");
+}
 
 }  // namespace vkfuse::cli

@@ -40,12 +40,17 @@ constexpr OptionSpec kOptions[] = {
     {"--virtual-clock", "", "", "simulate on virtual clocks: as fast as the host allows, deterministic"},
     {"--camera-auto", "", "", "simulate the camera's auto exposure and white balance (default: locked)"},
     {"--background-frames", "", "N", "no-contact frames averaged per setting for the background (default 20; 0: none)"},
+    {"--skip", "", "MODE", "off, or idle: a sensor whose frames stay within its background noise is not fused (default idle)"},
+    {"--skip-threshold", "", "K", "a tile changed when a sample lies over K x the tile's noise from the background (default 8)"},
+    {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},
     {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},
     {"--replay", "", "DIR", "play a recorded dataset instead of simulating (vkfuse sim, vkfuse run --record)"},
     {"--record", "", "DIR", "record the frames fused (and the background frames) as a dataset (new directory)"},
     {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json (a new directory)"},
     {"--replace", "", "", "let --out name a previous run's directory: replaced whole once this run succeeds"},
 };
+
+static_assert(SkipConfig{}.threshold == 8.0, "--skip-threshold's help states the default");
 
 constexpr CommandSpec kSpec{
     "run",
@@ -137,6 +142,8 @@ RigConfig rig_config(Session& s) {
     cfg.background_frames = o.background_frames;
     cfg.cycle_timeout_s = o.timeout_s;
     cfg.want_fused = o.out.has_value();
+    cfg.skip = o.skip;
+    cfg.watch_when_idle = !o.record;  // a dataset holds every setting of every cycle
     // The recorder is made once the rig has accepted the configuration (no
     // directory for a run that cannot start); the callback finds it then.
     if (o.record)
@@ -145,8 +152,9 @@ RigConfig rig_config(Session& s) {
             for (const Frame& f : frames) rec->add_frame(int(i), "nothing", true, f, setting);
         };
     if (!s.sensors.sims.empty() && o.background_frames > 0)
-        cfg.after_background = [sims = s.sensors.sims, object = o.object](std::size_t i) {
-            sims[i]->set_object(object);
+        cfg.after_background = [sims = s.sensors.sims, object = o.object,
+                                pressing = std::size_t(o.pressing.value_or(o.sensors))](std::size_t i) {
+            if (i < pressing) sims[i]->set_object(object);
         };
     return cfg;
 }
@@ -157,7 +165,8 @@ void open_outputs(Session& s) {
     const RunOptions& o = s.options;
     if (s.out_dir)
         s.output = std::make_unique<RunOutput>(s.out_dir->path(), o.object,
-                                               static_slot(o.sequence, s.sensors.rig.front().sensor->info().leds));
+                                               static_slot(o.sequence, s.sensors.rig.front().sensor->info().leds),
+                                               o.skip.policy != SkipPolicy::Off);
     if (!s.record_dir) return;
     s.recorder = std::make_unique<DatasetWriter>(s.record_dir->path(), "vkfuse run");
     for (const RigSensor& r : s.sensors.rig) s.recorder->add_sensor(r.sensor->info());
@@ -193,7 +202,7 @@ bool more_to_do(const Session& s, const Rig& rig, const RunStats& stats, const S
 }
 
 RunStats cycle_loop(Session& s, Rig& rig, const StopSignal& stop) {
-    RunStats stats(rig.sensors());
+    RunStats stats(rig.sensors(), s.options.skip);
     Progress progress("vkfuse run");
     while (more_to_do(s, rig, stats, stop)) {
         CycleResult cycle = rig.next();

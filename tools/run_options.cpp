@@ -40,7 +40,8 @@ void check_object(const std::string& object) {
 
 void check_replay_conflicts(const Args& args) {
     for (const char* option :
-         {"--sensors", "--background-frames", "--virtual-clock", "--camera-auto", "--motion", "--motion-period"})
+         {"--sensors", "--background-frames", "--virtual-clock", "--camera-auto", "--motion", "--motion-period",
+          "--pressing"})
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
 }
@@ -70,6 +71,21 @@ int recorded_background_frames(const Dataset& d, const IlluminationSequence& seq
 
 }  // namespace
 
+void skip_options(const Args& args, RunOptions& o) {
+    o.skip.policy = o.background_frames >= 2 ? SkipPolicy::Idle : SkipPolicy::Off;
+    if (auto v = args.value("--skip")) {
+        const std::optional<SkipPolicy> p = parse_skip_policy(*v);
+        if (!p) fail("--skip " + *v + ": expected off or idle");
+        if (*p != SkipPolicy::Off && o.background_frames < 2)
+            fail("--skip " + *v + ": needs --background-frames of at least 2 (the noise each tile is judged by)");
+        o.skip.policy = *p;
+    }
+    if (auto v = args.value("--skip-threshold")) {
+        o.skip.threshold = parse_positive_number("--skip-threshold", *v);
+        if (o.skip.policy == SkipPolicy::Off) fail("--skip-threshold " + *v + ": skipping is off");
+    }
+}
+
 RunOptions parse_run_options(const Args& args) {
     if (!args.operands().empty()) args.usage_error("unexpected operand " + args.operands().front());
     RunOptions o;
@@ -98,6 +114,12 @@ RunOptions parse_run_options(const Args& args) {
     o.out = args.value("--out");
     o.background_frames = kDefaultBackgroundFrames;
     if (auto v = args.value("--background-frames")) o.background_frames = parse_count("--background-frames", *v);
+    skip_options(args, o);
+    if (auto v = args.value("--pressing")) {
+        o.pressing = parse_count("--pressing", *v);
+        if (*o.pressing > o.sensors)
+            fail("--pressing " + *v + ": more than the " + std::to_string(o.sensors) + " simulated sensors");
+    }
     o.timeout_s = o.virtual_clock || o.replay ? kSimulatedTimeoutSeconds : kLiveTimeoutSeconds;
     if (auto v = args.value("--timeout")) o.timeout_s = parse_seconds("--timeout", *v);
     return o;
@@ -114,6 +136,7 @@ void adopt_recording(RunOptions& o, const Args& args, const Dataset& d) {
     }
     o.sensors = int(d.sensors.size());
     o.background_frames = d.run ? d.run->background_frames : recorded_background_frames(d, o.sequence);
+    skip_options(args, o);  // the recording's background decides whether skipping can be on
 }
 
 }  // namespace vkfuse::cli

@@ -82,7 +82,7 @@ void write_text(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const std::string& object) {
+std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const std::string& object, bool skipping) {
     std::string line = "{\"cycle\": " + std::to_string(cycle.cycle) + ", \"sensor\": " + json_string(s.serial) +
                        ", \"status\": " + json_string(std::string(to_string(s.status)));
     if (s.status != SensorStatus::Ok) return line + ", \"error\": " + json_string(s.error) + "}";
@@ -92,6 +92,12 @@ std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const s
             ", \"frames\": [" + frames + "], \"sharpness\": " + json_number(s.metrics.sharpness) +
             ", \"contrast\": " + json_number(s.metrics.contrast);
     if (s.metrics.background_diff) line += ", \"background_diff\": " + json_number(*s.metrics.background_diff);
+    line += std::string(", \"idle\": ") + (s.skip.idle ? "true" : "false") +
+            ", \"fused_fraction\": " + json_number(s.skip.fused_fraction);
+    if (skipping) {
+        line += ", \"change_score\": " + json_number(s.skip.score);
+        if (s.watch) line += ", \"watch\": true";
+    }
     return line + "}";
 }
 
@@ -108,10 +114,11 @@ bool is_run_output_entry(const std::string& name) {
 // Fused frames waiting for the PNG writer: a few cycles of 16 VGA sensors.
 constexpr std::size_t kMaxPendingImageBytes = std::size_t(256) << 20;
 
-RunOutput::RunOutput(std::string directory, std::string object, std::size_t slot)
+RunOutput::RunOutput(std::string directory, std::string object, std::size_t slot, bool skipping)
     : directory_(std::move(directory)),
       object_(std::move(object)),
       static_slot_(slot),
+      skipping_(skipping),
       fused_pngs_(kMaxPendingImageBytes) {
     io::check_plain_component(object_, "object");
     metrics_fd_ = create_new((fs::path(directory_) / kMetricsName).string());
@@ -124,12 +131,13 @@ RunOutput::~RunOutput() {
 void RunOutput::write(const CycleResult& cycle) {
     const std::string metrics_path = (fs::path(directory_) / kMetricsName).string();
     for (const SensorCycle& s : cycle.sensors) {
-        write_all(metrics_fd_, metrics_line(cycle, s, object_) + "\n", metrics_path);
+        write_all(metrics_fd_, metrics_line(cycle, s, object_, skipping_) + "\n", metrics_path);
         if (s.status != SensorStatus::Ok || !s.fused) continue;
         io::check_plain_component(s.serial, "serial");
         const fs::path dir = fs::path(directory_) / kFusedName / s.serial;
         make_directory(dir);
         fused_pngs_.push((dir / cycle_name(cycle.cycle)).string(), *s.fused);
+        if (s.watch) continue;  // one setting only: the side-by-side picture shows a whole cycle
         auto it = std::find_if(last_.begin(), last_.end(), [&](const auto& e) { return e.first == s.serial; });
         if (it == last_.end()) it = last_.insert(last_.end(), {s.serial, {}});
         it->second = {s.frames, *s.fused};

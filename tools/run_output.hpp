@@ -16,7 +16,9 @@
 namespace vkfuse::cli {
 
 // One metrics line (no wall-clock values: a replay reproduces it exactly).
-std::string metrics_line(const CycleResult& cycle, const SensorCycle& sensor, const std::string& object);
+// With skipping on it also carries the cycle's largest tile change score.
+std::string metrics_line(const CycleResult& cycle, const SensorCycle& sensor, const std::string& object,
+                         bool skipping);
 
 // The slot of sequence lit by every LED at full level (the sensor's usual,
 // static illumination), else slot 0.
@@ -30,7 +32,7 @@ public:
     // directory must exist and be empty (a staging directory). object and the
     // serials become file names and must be plain components (checked:
     // Error(Format) otherwise, whatever a replayed dataset says).
-    RunOutput(std::string directory, std::string object, std::size_t static_slot);
+    RunOutput(std::string directory, std::string object, std::size_t static_slot, bool skipping);
     ~RunOutput();
     RunOutput(const RunOutput&) = delete;
     RunOutput& operator=(const RunOutput&) = delete;
@@ -48,6 +50,7 @@ private:
     };
     std::string directory_, object_;
     std::size_t static_slot_;
+    bool skipping_;
     int metrics_fd_ = -1;
     std::vector<std::pair<std::string, Last>> last_;  // by serial, in sensor order
     ImageWriteQueue fused_pngs_;  // last: stopped before anything it writes about goes

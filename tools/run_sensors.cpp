@@ -11,7 +11,8 @@ RunSensors simulated_sensors(const RunOptions& o) {
     for (int i = 0; i < o.sensors; ++i) {
         SimDigitOptions sim;
         sim.seed = std::uint64_t(i) + 1;
-        sim.object = o.background_frames > 0 ? "nothing" : o.object;
+        const bool presses = i < o.pressing.value_or(o.sensors);
+        sim.object = o.background_frames > 0 || !presses ? "nothing" : o.object;
         sim.camera_auto = o.camera_auto;
         sim.motion = o.motion;
         sim.motion_period_s = o.motion_period_s;

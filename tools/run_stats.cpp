@@ -23,7 +23,7 @@ std::string timing_json(const std::optional<SwitchTiming>& t) {
 
 }  // namespace
 
-RunStats::RunStats(std::size_t sensors) : sensors_(sensors) {}
+RunStats::RunStats(std::size_t sensors, SkipConfig skip) : skip_(skip), sensors_(sensors) {}
 
 void RunStats::add(const CycleResult& cycle, double write_s) {
     ++cycles_;
@@ -36,6 +36,8 @@ void RunStats::add(const CycleResult& cycle, double write_s) {
         }
         ++last_ok_;
         ++fused_;
+        if (s.skip.idle) ++idle_;
+        fused_fraction_sum_ += s.skip.fused_fraction;
         PerSensor& p = sensors_[i];
         const double ts = s.frames.back().timestamp;
         if (p.fused++ == 0) p.first_ts = ts;
@@ -100,6 +102,10 @@ std::string RunStats::summary_json(const Rig& rig) const {
            ", \"sensor_clock_fps_mean\": " + json_number(fps_mean) +
            ", \"ms_per_cycle\": {\"capture\": " + json_number(capture_s_ / n * 1e3) +
            ", \"fuse\": " + json_number(fuse_s_ / n * 1e3) + ", \"write\": " + json_number(write_s_ / n * 1e3) +
+           "}, \"skip\": {\"mode\": " + json_string(std::string(to_string(skip_.policy))) +
+           ", \"threshold\": " + json_number(skip_.threshold) +
+           ", \"idle_fraction\": " + json_number(double(idle_) / double(std::max<std::uint64_t>(fused_, 1))) +
+           ", \"fused_fraction\": " + json_number(fused_ ? fused_fraction_sum_ / double(fused_) : 1.0) +
            "}, \"switch_timing\": {" + timings + "}, \"errors\": [" + errors + "]}";
 }
 

@@ -13,7 +13,7 @@ namespace vkfuse::cli {
 
 class RunStats {
 public:
-    explicit RunStats(std::size_t sensors);
+    RunStats(std::size_t sensors, SkipConfig skip);
 
     void add(const CycleResult& cycle, double write_s);
     std::uint64_t cycles() const { return cycles_; }
@@ -25,7 +25,9 @@ public:
     // "cycle 57/120 | 16/16 ok | 3.1 fused fps/sensor (49.8 sensor-cycles/s) | capture 12 ms, fuse 80 ms, write 30 ms"
     std::string progress_line(std::optional<int> target) const;
     // One JSON object: counts, submits, throughput (wall clock and sensor
-    // clock), mean stage latency, each sensor's switch timing, distinct errors.
+    // clock), mean stage latency, skipping (the policy, and the shares of
+    // sensor-cycles idle and of tiles fused), each sensor's switch timing,
+    // distinct errors.
     std::string summary_json(const Rig& rig) const;
 
 private:
@@ -34,7 +36,9 @@ private:
         double first_ts = 0, last_ts = 0;
     };
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-    std::uint64_t cycles_ = 0, fused_ = 0;
+    SkipConfig skip_;
+    std::uint64_t cycles_ = 0, fused_ = 0, idle_ = 0;
+    double fused_fraction_sum_ = 0;
     std::size_t last_ok_ = 0;
     double capture_s_ = 0, fuse_s_ = 0, write_s_ = 0;  // totals
     double last_capture_s_ = 0, last_fuse_s_ = 0, last_write_s_ = 0;

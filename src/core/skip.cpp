@@ -25,6 +25,11 @@ std::optional<SkipPolicy> parse_skip_policy(std::string_view text) {
     return std::nullopt;
 }
 
+std::uint16_t skip_mean_fixed(float mean) {
+    const double v = std::round(double(mean) * kMeanSteps);
+    return std::uint16_t(std::clamp(v, 0.0, 65535.0));
+}
+
 int skip_tiles_x(int width) { return (width + kSkipTile - 1) / kSkipTile; }
 int skip_tiles_y(int height) { return (height + kSkipTile - 1) / kSkipTile; }
 
@@ -105,7 +110,8 @@ std::vector<double> change_scores_reference(std::span<const FrameView> frames, c
                     const double v = f.type == PixelType::U8
                                          ? double(static_cast<const std::uint8_t*>(f.data)[i]) / 255.0
                                          : double(static_cast<const float*>(f.data)[i]);
-                    const double z = std::abs(v - double(mean.data[i])) / double(noise[k * tiles + t]);
+                    const double m = double(skip_mean_fixed(mean.data[i])) / kMeanSteps;
+                    const double z = std::abs(v - m) / double(noise[k * tiles + t]);
                     scores[t] = std::max(scores[t], z);
                 }
             }

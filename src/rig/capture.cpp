@@ -1,9 +1,11 @@
 // The capture thread of one sensor (rig/hub.hpp).
 #include <map>
+#include <utility>
 
 #include "rig/hub.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::rig {
 namespace {
@@ -31,13 +33,17 @@ Switcher make_switcher(const CaptureJob& job) {
 
 // One mean per distinct setting of the sequence, with nothing pressed.
 // Returns false if the rig stopped meanwhile.
-bool capture_background(const CaptureJob& job, Switcher& switcher, std::vector<Image>& out) {
+// With skipping on, also each setting's per-pixel standard deviation.
+bool capture_background(const CaptureJob& job, Switcher& switcher, std::vector<Image>& out,
+                        std::vector<Image>& deviations) {
     const RigConfig& cfg = *job.config;
-    std::map<std::string, Image> means;
+    std::map<std::string, std::pair<Image, Image>> means;
+    const bool skipping = cfg.skip.policy != SkipPolicy::Off;
     for (const Illumination& setting : cfg.sequence) {
         auto known = means.find(setting.to_string());
         if (known != means.end()) {
-            out.push_back(known->second);
+            out.push_back(known->second.first);
+            if (skipping) deviations.push_back(known->second.second);
             continue;
         }
         const std::vector<Frame> frames = switcher.capture(setting, cfg.background_frames);
@@ -49,8 +55,10 @@ bool capture_background(const CaptureJob& job, Switcher& switcher, std::vector<I
             mean = job.hub->average(views);
         });
         if (!ran) return false;
-        means.emplace(setting.to_string(), mean);
+        Image deviation = skipping ? background_deviation(views, mean) : Image();
+        means.emplace(setting.to_string(), std::pair(mean, deviation));
         out.push_back(std::move(mean));
+        if (skipping) deviations.push_back(std::move(deviation));
     }
     return true;
 }
@@ -69,11 +77,12 @@ void run_capture(const CaptureJob& job) {
     Hub& hub = *job.hub;
     SensorSlot& slot = hub.slots[job.index];
     Switcher switcher = make_switcher(job);
-    std::vector<Image> background;
-    if (job.config->background_frames > 0 && !capture_background(job, switcher, background)) return;
+    std::vector<Image> background, deviation;
+    if (job.config->background_frames > 0 && !capture_background(job, switcher, background, deviation)) return;
     {
         std::lock_guard lock(hub.mutex);
         slot.background = std::move(background);
+        slot.deviation = std::move(deviation);
         slot.background_done = true;
     }
     hub.changed.notify_all();
@@ -82,7 +91,31 @@ void run_capture(const CaptureJob& job) {
             if (after) after(job.index);
         }))
         return;
-    while (deliver(hub, slot, switcher.next_cycle(job.config->sequence))) {
+    const RigConfig& cfg = *job.config;
+    const bool may_watch = cfg.watch_when_idle && cfg.skip.policy != SkipPolicy::Off &&
+                           cfg.judging == FrameJudging::Timing && cfg.sequence.size() > 1;
+    while (true) {
+        bool watch = false;
+        if (may_watch) {
+            std::lock_guard lock(hub.mutex);
+            watch = slot.watching;
+        }
+        std::vector<Frame> frames = watch ? switcher.capture(cfg.sequence.front(), 1) : switcher.next_cycle(cfg.sequence);
+        if (watch) {
+            // Captured while the last watch cycle was being judged; delivered
+            // only if that one saw no change, else the whole sequence is.
+            std::unique_lock lock(hub.mutex);
+            hub.changed.wait(lock, [&] { return hub.stop || slot.watch_judged >= slot.watch_sent; });
+            if (hub.stop) return;
+            watch = slot.watching;
+            lock.unlock();
+            if (!watch) frames = switcher.next_cycle(cfg.sequence);
+        }
+        if (!deliver(hub, slot, std::move(frames))) return;
+        if (watch) {
+            std::lock_guard lock(hub.mutex);
+            ++slot.watch_sent;
+        }
     }
 }
 

@@ -1,5 +1,8 @@
 #include "rig/engine.hpp"
 
+#include <algorithm>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "vkfuse/core/error.hpp"
@@ -12,6 +15,8 @@ class GpuEngine : public Engine {
 public:
     GpuEngine(Context& context, const PlanConfig& config) : plan_(context, config) {}
     void set_background(int sensor, const Image& bg) override { plan_.set_background(sensor, FrameView::of(bg)); }
+    void set_skip_reference(int sensor, const SkipReference& r) override { plan_.set_skip_reference(sensor, r); }
+    SkipOutcome skip_outcome(int sensor) override { return plan_.skip_outcome(sensor); }
     void run(std::span<const FrameView> frames) override { plan_.run(frames); }
     const Image& fused(int sensor) override { return plan_.fused(sensor); }
     Metrics metrics(int sensor) override { return plan_.metrics(sensor); }
@@ -29,12 +34,26 @@ public:
         : cfg_(config),
           backgrounds_(std::size_t(config.sensors)),
           fused_(std::size_t(config.sensors)),
-          metrics_(std::size_t(config.sensors)) {
+          metrics_(std::size_t(config.sensors)),
+          skip_(std::size_t(config.sensors)),
+          outcomes_(std::size_t(config.sensors)) {
         validate(cfg_.fusion, cfg_.height, cfg_.width, cfg_.channels, cfg_.frames);
     }
     void set_background(int sensor, const Image& bg) override {
         backgrounds_.at(std::size_t(sensor)) = convert<double>(bg);
+        skip_.at(std::size_t(sensor)).idle_metrics.reset();
     }
+    void set_skip_reference(int sensor, const SkipReference& r) override {
+        check_skip_reference(r, cfg_.height, cfg_.width, cfg_.channels, cfg_.frames,
+                             "skip reference of sensor " + std::to_string(sensor));
+        SensorSkip& s = skip_.at(std::size_t(sensor));
+        s.reference = r;
+        std::vector<ImageD> means;
+        for (const Image& m : r.mean) means.push_back(convert<double>(m));
+        s.fused = convert<float>(fuse_reference(means, cfg_.fusion));
+        s.idle_metrics.reset();
+    }
+    SkipOutcome skip_outcome(int sensor) override { return outcomes_.at(std::size_t(sensor)); }
     void run(std::span<const FrameView> frames) override {
         if (frames.size() != std::size_t(cfg_.sensors) * std::size_t(cfg_.frames))
             throw Error(ErrorKind::InvalidArgument, "rig: frame count does not match sensors x frames");
@@ -51,9 +70,40 @@ private:
     std::vector<ImageD> backgrounds_;
     std::vector<Image> fused_;
     std::vector<Metrics> metrics_;
+    struct SensorSkip {
+        std::optional<SkipReference> reference;
+        Image fused;  // the reference's means fused: an idle cycle's result
+        std::optional<Metrics> idle_metrics;
+    };
+    std::vector<SensorSkip> skip_;
+    std::vector<SkipOutcome> outcomes_;
     std::uint64_t runs_ = 0;
 
+    // Skipping: whether sensor s's frames stayed within its noise (then its
+    // result is the fused reference), as the device decides it.
+    bool idle(std::size_t s, std::span<const FrameView> frames) {
+        if (cfg_.skip.policy == SkipPolicy::Off) return false;
+        SensorSkip& sk = skip_[s];
+        if (!sk.reference) throw Error(ErrorKind::InvalidArgument, "plan run: no skip reference set for sensor " + std::to_string(s));
+        const std::vector<double> scores = change_scores_reference(frames, *sk.reference);
+        SkipOutcome& o = outcomes_[s];
+        const auto changed = std::count_if(scores.begin(), scores.end(), [&](double v) { return !(v <= cfg_.skip.threshold); });
+        o.idle = changed == 0;
+        o.fused_fraction = o.idle ? 0.0 : 1.0;
+        o.changed_fraction = double(changed) / double(scores.size());
+        o.score = *std::max_element(scores.begin(), scores.end());
+        if (!o.idle) return false;
+        if (cfg_.want_metrics && !sk.idle_metrics) {
+            const bool with_bg = cfg_.background_diff && !backgrounds_[s].data.empty();
+            sk.idle_metrics = metrics_reference(convert<double>(sk.fused), with_bg ? &backgrounds_[s] : nullptr);
+        }
+        if (cfg_.want_metrics) metrics_[s] = *sk.idle_metrics;
+        fused_[s] = sk.fused;
+        return true;
+    }
+
     void run_sensor(std::size_t s, std::span<const FrameView> frames) {
+        if (idle(s, frames)) return;
         std::vector<ImageD> images;
         for (const FrameView& v : frames) images.push_back(to_double(v));
         const ImageD fused = fuse_reference(images, cfg_.fusion);

@@ -16,15 +16,19 @@ class Engine {
 public:
     virtual ~Engine() = default;
     virtual void set_background(int sensor, const Image& background) = 0;
+    virtual void set_skip_reference(int sensor, const SkipReference& reference) = 0;
     // frames sensor-major, as Plan::run.
     virtual void run(std::span<const FrameView> frames) = 0;
     virtual const Image& fused(int sensor) = 0;
     virtual Metrics metrics(int sensor) = 0;
+    virtual SkipOutcome skip_outcome(int sensor) = 0;
     virtual std::uint64_t submits() const = 0;
 };
 
 // A Plan on context, or the CPU reference path when context is null (config
-// as for a Plan; want_metrics and background_diff are honoured the same way).
+// as for a Plan; want_metrics, background_diff and skip are honoured the same
+// way: the CPU path detects change with core/skip.hpp's reference, the same
+// statistic in double precision).
 std::unique_ptr<Engine> make_engine(Context* context, const PlanConfig& config);
 
 // A borrowed frame as a double image (v / 255 for 8-bit).

@@ -23,6 +23,13 @@ struct SensorSlot {
     bool background_done = false;
     bool background_applied = false;  // rig side: handed to the fusion engine
     std::vector<Image> background;    // per slot of the sequence
+    std::vector<Image> deviation;     // per slot: the background frames' per-pixel standard deviation
+    // Watch cycles (RigConfig::watch_when_idle): set by the rig after each
+    // cycle it fused; the capture thread waits for the verdict on a watch
+    // cycle before it captures again, so a change is followed at once by a
+    // whole sequence.
+    bool watching = false;
+    std::uint64_t watch_sent = 0, watch_judged = 0;
     bool failed = false;
     std::string error;
     bool exited = false;

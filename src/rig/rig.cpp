@@ -2,7 +2,10 @@
 // brought with one submit (include/vkfuse/rig/rig.hpp).
 #include "vkfuse/rig/rig.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <thread>
 
 #include "core/deadline.hpp"
@@ -27,6 +30,9 @@ void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors) {
     if (cfg.background_frames < 0) throw Error(ErrorKind::InvalidArgument, "rig: background_frames must be >= 0");
     if (!(cfg.cycle_timeout_s > 0) || !(cfg.startup_timeout_s > 0))
         throw Error(ErrorKind::InvalidArgument, "rig: timeouts must be > 0");
+    if (cfg.skip.policy != SkipPolicy::Off && cfg.background_frames < 2)
+        throw Error(ErrorKind::InvalidArgument, "rig: skip " + std::string(to_string(cfg.skip.policy)) +
+                                                    " needs at least 2 background frames per setting");
     for (const RigSensor& s : sensors)
         if (!s.sensor) throw Error(ErrorKind::InvalidArgument, "rig: null sensor");
 }
@@ -54,6 +60,12 @@ struct Rig::Impl {
     // and placed in their recorded cycle.
     std::vector<bool> replayed;
     std::vector<std::uint8_t> black;
+    // Watch cycles: per sensor, its background means rounded to 8 bits (what
+    // stands in for the settings a watch cycle did not capture: they score
+    // at most half a level from the means), and its last idle result.
+    std::vector<std::vector<std::vector<std::uint8_t>>> fill;
+    std::vector<std::optional<Metrics>> idle_metrics;
+    std::vector<const Image*> idle_image;
     std::uint64_t cycle = 0;
     bool started = false;
 
@@ -89,9 +101,17 @@ Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
     engine = rig::make_engine(context, plan_config(PixelType::U8, true));
     if (cfg->background_frames > 0) {
         const Image zero(height, width, 3);  // until a sensor's own background is in
-        for (std::size_t i = 0; i < sensors.size(); ++i) engine->set_background(int(i), zero);
+        const SkipReference black{std::vector<Image>(cfg->sequence.size(), zero),
+                                  std::vector<Image>(cfg->sequence.size(), zero)};
+        for (std::size_t i = 0; i < sensors.size(); ++i) {
+            engine->set_background(int(i), zero);
+            if (cfg->skip.policy != SkipPolicy::Off) engine->set_skip_reference(int(i), black);
+        }
     }
     last_good.resize(sensors.size());
+    fill.resize(sensors.size());
+    idle_metrics.resize(sensors.size());
+    idle_image.assign(sensors.size(), nullptr);
     lagging.assign(sensors.size(), false);
     replayed.assign(sensors.size(), false);
     black.assign(std::size_t(height) * std::size_t(width) * 3, 0);
@@ -109,6 +129,7 @@ PlanConfig Rig::Impl::plan_config(PixelType input, bool metrics) const {
     p.want_fused = cfg->want_fused || !metrics;
     p.want_metrics = metrics;
     p.background_diff = metrics && cfg->background_frames > 0;
+    if (metrics) p.skip = cfg->skip;  // the background means themselves are always fused
     return p;
 }
 
@@ -131,7 +152,7 @@ bool Rig::Impl::cycle_ready() const {
 // Backgrounds that arrived since the last cycle are fused like frames (one
 // submit for all of them) and become those sensors' reference for D.
 void Rig::Impl::apply_new_backgrounds() {
-    std::vector<std::vector<Image>> fresh(sensors.size());
+    std::vector<std::vector<Image>> fresh(sensors.size()), deviations(sensors.size());
     bool any = false;
     {
         std::lock_guard lock(hub->mutex);
@@ -139,6 +160,7 @@ void Rig::Impl::apply_new_backgrounds() {
             rig::SensorSlot& slot = hub->slots[i];
             if (!slot.background_done || slot.background_applied || slot.background.empty()) continue;
             fresh[i] = slot.background;
+            deviations[i] = slot.deviation;
             slot.background_applied = true;
             any = true;
         }
@@ -151,8 +173,23 @@ void Rig::Impl::apply_new_backgrounds() {
         for (std::size_t k = 0; k < cfg->sequence.size(); ++k)
             views.push_back(FrameView::of(means.empty() ? zero : means[k]));
     bg_engine->run(views);
-    for (std::size_t i = 0; i < sensors.size(); ++i)
-        if (!fresh[i].empty()) engine->set_background(int(i), bg_engine->fused(int(i)));
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+        if (fresh[i].empty()) continue;
+        engine->set_background(int(i), bg_engine->fused(int(i)));
+        if (cfg->skip.policy == SkipPolicy::Off) continue;
+        engine->set_skip_reference(int(i), SkipReference{fresh[i], deviations[i]});
+        fill[i].clear();
+        for (const Image& mean : fresh[i]) {
+            std::vector<std::uint8_t> level(mean.size());
+            for (std::size_t j = 0; j < level.size(); ++j)
+                level[j] = std::uint8_t(std::clamp(std::lround(double(mean.data[j]) * 255.0), 0l, 255l));
+            fill[i].push_back(std::move(level));
+        }
+        idle_metrics[i].reset();
+        idle_image[i] = nullptr;
+        std::lock_guard lock(hub->mutex);
+        hub->slots[i].watching = false;
+    }
 }
 
 std::vector<FrameView> Rig::Impl::views_for(const std::vector<SensorCycle>& results) const {
@@ -160,9 +197,14 @@ std::vector<FrameView> Rig::Impl::views_for(const std::vector<SensorCycle>& resu
     const std::size_t K = cfg->sequence.size();
     for (std::size_t i = 0; i < results.size(); ++i) {
         const std::vector<Frame>& frames = results[i].status == SensorStatus::Ok ? results[i].frames : last_good[i];
-        for (std::size_t k = 0; k < K; ++k)
-            views.push_back(frames.empty() ? FrameView{black.data(), height, width, 3, PixelType::U8}
-                                           : frames[k].view());
+        for (std::size_t k = 0; k < K; ++k) {
+            if (k < frames.size())
+                views.push_back(frames[k].view());
+            else if (!frames.empty() && k < fill[i].size())  // a watch cycle
+                views.push_back(FrameView{fill[i][k].data(), height, width, 3, PixelType::U8});
+            else
+                views.push_back(FrameView{black.data(), height, width, 3, PixelType::U8});
+        }
     }
     return views;
 }
@@ -272,9 +314,30 @@ void Rig::Impl::fuse(CycleResult& result) {
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         SensorCycle& r = result.sensors[i];
         if (r.status != SensorStatus::Ok) continue;
-        r.metrics = engine->metrics(int(i));
-        if (cfg->want_fused) r.fused = &engine->fused(int(i));
+        r.skip = engine->skip_outcome(int(i));
+        r.watch = r.frames.size() < cfg->sequence.size();
+        if (r.watch && !r.skip.idle && idle_metrics[i]) {
+            // The frame changed, but one setting is no cycle to fuse: the
+            // result stays the fused background until the next cycle, which
+            // captures the whole sequence.
+            r.skip.idle = true;
+            r.skip.fused_fraction = 0;
+            r.metrics = *idle_metrics[i];
+            r.fused = idle_image[i];
+        } else {
+            r.metrics = engine->metrics(int(i));
+            if (cfg->want_fused) r.fused = &engine->fused(int(i));
+            if (r.skip.idle) {
+                idle_metrics[i] = r.metrics;
+                idle_image[i] = r.fused;
+            }
+        }
+        std::lock_guard lock(hub->mutex);
+        rig::SensorSlot& slot = hub->slots[i];
+        slot.watching = r.skip.idle && r.skip.changed_fraction == 0;
+        if (r.watch) ++slot.watch_judged;
     }
+    hub->changed.notify_all();
 }
 
 CycleResult Rig::next() {

@@ -61,6 +61,10 @@ struct Switcher::Impl {
     std::map<std::uint64_t, std::vector<std::optional<Frame>>> cycles;
     std::uint64_t next_to_return = 0;
     Key next_to_request;
+    // The setting requested last and when it lights whole frames from: a
+    // capture under the setting already lit waits for no switch.
+    std::optional<Illumination> lit;
+    double lit_from = 0;
 
     Impl(Sensor& s, std::shared_ptr<Clock> c, const SwitchTiming& t)
         : sensor(s), clock(std::move(c)), timing(t), serial(s.info().serial) {}
@@ -75,6 +79,10 @@ struct Switcher::Impl {
         const double t = clock ? clock->now() : 0.0;
         sensor.set_illumination(setting);
         ++requests;
+        if (clock) {
+            lit = setting;
+            lit_from = timing.first_lit(t);
+        }
         return t;
     }
     bool labelled_otherwise(const Frame& f, const Illumination& setting) const {
@@ -126,7 +134,7 @@ std::vector<Frame> Switcher::Impl::capture_by_label(const Illumination& setting,
 
 std::vector<Frame> Switcher::Impl::capture_by_timing(const Illumination& setting, int n) {
     reset(sequence);  // a capture interrupts any cycle in progress
-    const double ready = timing.first_lit(request(setting));
+    const double ready = lit && *lit == setting ? lit_from : timing.first_lit(request(setting));
     std::vector<Frame> out;
     while (int(out.size()) < n) {
         Frame f = grab();

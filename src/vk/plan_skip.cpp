@@ -17,8 +17,8 @@ SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& up
       tiles_x_(std::uint32_t(skip_tiles_x(cfg.width))),
       tiles_y_(std::uint32_t(skip_tiles_y(cfg.height))) {
     const std::size_t S = std::size_t(cfg.sensors), K = std::size_t(cfg.frames), tiles = tiles_x_ * tiles_y_;
-    means_ = Buffer(ctx, S * K * std::size_t(cfg.channels) * std::size_t(cfg.height) * std::size_t(cfg.width) * 4,
-                    MemoryUse::Upload);
+    const std::size_t samples = S * K * std::size_t(cfg.channels) * std::size_t(cfg.height) * std::size_t(cfg.width);
+    means_ = Buffer(ctx, (samples * 2 + 3) / 4 * 4, MemoryUse::Upload);
     inv_noise_ = Buffer(ctx, S * K * tiles * 4, MemoryUse::Upload);
     scores_ = Buffer(ctx, S * tiles * 4, MemoryUse::Readback);
     indirect_ = Buffer(ctx, kMaxDispatches * sizeof(VkDispatchIndirectCommand), MemoryUse::Upload);
@@ -34,15 +34,11 @@ void SkipState::record(const Buffer& upload, bool addressed) {
     sets_.emplace(ctx_);
     detect_.emplace(ctx_, 0);
     Recorder rec(ctx_, detect_->cmd(), VK_NULL_HANDLE, "", *sets_, addressed);
-    const std::uint32_t pixels = std::uint32_t(cfg_.width) * std::uint32_t(cfg_.height);
-    const DeviceSpan frames = upload.span(), means = means_.span();
-    rec.dispatch("change_detect", {frames, frames, means, means, inv_noise_.span(), scores_.span()},
+    rec.dispatch("change_detect", {upload.span(), means_.span(), inv_noise_.span(), scores_.span()},
                  PushConstants()
-                     .u32(pixels)
-                     .u32(std::uint32_t(cfg_.channels))
-                     .u32(cfg_.input == PixelType::U8)
                      .u32(std::uint32_t(cfg_.width))
                      .u32(std::uint32_t(cfg_.height))
+                     .u32(std::uint32_t(cfg_.channels))
                      .u32(std::uint32_t(cfg_.frames))
                      .u32(cfg_.width % 4 == 0),
                  tiles_x_, tiles_y_, std::uint32_t(cfg_.sensors));
@@ -54,13 +50,14 @@ void SkipState::set_reference(int sensor, const SkipReference& reference) {
     check_skip_reference(reference, cfg_.height, cfg_.width, cfg_.channels, cfg_.frames, what);
     const std::size_t K = std::size_t(cfg_.frames), C = std::size_t(cfg_.channels);
     const std::size_t pixels = std::size_t(cfg_.height) * std::size_t(cfg_.width), tiles = tiles_x_ * tiles_y_;
-    float* means = static_cast<float*>(means_.mapped()) + std::size_t(sensor) * K * C * pixels;
-    for (std::size_t k = 0; k < K; ++k)  // HWC -> planar, plane k * C + c
-        for (std::size_t p = 0; p < pixels; ++p)
-            for (std::size_t c = 0; c < C; ++c) means[(k * C + c) * pixels + p] = reference.mean[k].data[p * C + c];
+    // In the frames' own order (HWC, frame after frame), as 16-bit fixed point.
+    auto* means = static_cast<std::uint16_t*>(means_.mapped()) + std::size_t(sensor) * K * C * pixels;
+    for (std::size_t k = 0; k < K; ++k)
+        for (std::size_t i = 0; i < C * pixels; ++i) means[k * C * pixels + i] = skip_mean_fixed(reference.mean[k].data[i]);
+    // Distances reach the kernel in fixed-point steps.
     const std::vector<float> noise = tile_noise(reference);
     float* inv = static_cast<float*>(inv_noise_.mapped()) + std::size_t(sensor) * K * tiles;
-    for (std::size_t i = 0; i < noise.size(); ++i) inv[i] = 1.0f / noise[i];
+    for (std::size_t i = 0; i < noise.size(); ++i) inv[i] = float(1.0 / (double(noise[i]) * kMeanSteps));
     std::vector<ImageD> means_d;
     for (const Image& m : reference.mean) means_d.push_back(convert<double>(m));
     fused_[std::size_t(sensor)] = convert<float>(fuse_reference(means_d, cfg_.fusion));
@@ -69,8 +66,9 @@ void SkipState::set_reference(int sensor, const SkipReference& reference) {
 }
 
 std::vector<int> SkipState::detect() {
-    detect_->submit_and_wait();
     const std::size_t tiles = tiles_x_ * tiles_y_;
+    std::memset(scores_.mapped(), 0, std::size_t(cfg_.sensors) * tiles * sizeof(float));  // the kernel's atomicMax starts at 0
+    detect_->submit_and_wait();
     const float* scores = static_cast<const float*>(scores_.mapped());
     std::vector<int> fused;
     for (int s = 0; s < cfg_.sensors; ++s) {

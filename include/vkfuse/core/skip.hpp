@@ -2,6 +2,7 @@
 // "Skipping"): a cycle whose frames stay within the sensor's background noise
 // is not fused; its result is the fused background.
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -35,6 +36,14 @@ struct SkipConfig {
     double threshold = 8.0;
 };
 
+// How one sensor's cycle was treated (Plan::skip_outcome, SensorCycle::skip).
+struct SkipOutcome {
+    bool idle = false;             // not fused: its result is the fused reference and that image's metrics
+    double fused_fraction = 1;     // share of the frame's tiles fused this run
+    double changed_fraction = 1;   // share of tiles whose score exceeded the threshold
+    double score = 0;              // the largest tile score
+};
+
 // What a sensor's frames are compared with: for each frame k of a cycle (lit
 // by setting k of the sequence), the per-pixel mean of background frames
 // under that setting and their per-pixel standard deviation. Both are float32
@@ -57,10 +66,15 @@ int skip_tiles_y(int height);
 // values, setting-major (tile t of setting k at k * tiles + t), tiles row-major.
 std::vector<float> tile_noise(const SkipReference& reference);
 
+// Means are compared at 1/256 of an 8-bit level: the device holds them as
+// 16-bit fixed point, round(mean x 255 x 256) clamped to 0..65535.
+inline constexpr double kMeanSteps = 255.0 * 256.0;
+std::uint16_t skip_mean_fixed(float mean);
+
 // The change score of every tile (row-major): the largest |frame_k - mean_k|
-// over the tile's samples and the K frames, divided by the tile's noise
-// under setting k. In double precision: what the device's scores are tested
-// against. Frames are U8 (v / 255) or F32.
+// over the tile's samples and the K frames (mean_k as skip_mean_fixed holds
+// it), divided by the tile's noise under setting k. In double precision: what
+// the device's scores are tested against. Frames are U8 (v / 255) or F32.
 std::vector<double> change_scores_reference(std::span<const FrameView> frames, const SkipReference& reference);
 
 // Throws Error(InvalidArgument) naming `what` unless reference holds K

@@ -10,6 +10,7 @@
 
 #include "vkfuse/core/fusion.hpp"
 #include "vkfuse/core/metrics.hpp"
+#include "vkfuse/core/skip.hpp"
 #include "vkfuse/sensor/clock.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sensor.hpp"
@@ -42,6 +43,17 @@ struct RigConfig {
     double cycle_timeout_s = 5.0;     // wall-clock time a cycle waits for a sensor
     double startup_timeout_s = 60.0;  // wall-clock time for calibration and background
     bool want_fused = true;           // read fused images back (else metrics only)
+    // Skipping idle sensors (PlanConfig::skip): each sensor's cycles are
+    // compared with its background frames' mean and noise, so it needs
+    // background_frames >= 2.
+    SkipConfig skip;
+    // With skip on and frames judged by timing: a sensor whose last cycle
+    // was idle captures only the first setting of the sequence (a "watch"
+    // cycle: no LED switching, no frames lost to it) until that frame
+    // changes; the cycle after it captures and fuses the whole sequence again.
+    // Off for a run whose frames are recorded, so that every cycle of the
+    // dataset holds every setting.
+    bool watch_when_idle = true;
 
     // Called on a sensor's capture thread with each setting's background
     // frames (e.g. to record them), then once when its background is done
@@ -65,6 +77,12 @@ struct SensorCycle {
     std::vector<Frame> frames;     // when Ok: the K frames fused, slot k lit by sequence[k]
     Metrics metrics;               // when Ok
     const Image* fused = nullptr;  // when Ok and want_fused; valid until the next cycle
+    SkipOutcome skip;              // when Ok: idle (its fused background returned) or fused
+    // When Ok: only the first setting was captured (frames holds that one
+    // frame; see RigConfig::watch_when_idle). Such a cycle is always idle;
+    // where its frame changed (skip.changed_fraction > 0) the next cycle
+    // captures the whole sequence and is fused.
+    bool watch = false;
 };
 
 struct CycleResult {

@@ -51,14 +51,6 @@ struct PlanConfig {
     SkipConfig skip = {};
 };
 
-// How a skipping plan treated one sensor in the last run().
-struct SkipOutcome {
-    bool idle = false;             // not fused: fused() is the fused background, metrics() its cached metrics
-    double fused_fraction = 1;     // share of the frame's tiles fused this run
-    double changed_fraction = 1;   // share of tiles whose score exceeded the threshold
-    double score = 0;              // the largest tile score (core/skip.hpp)
-};
-
 // Time one kernel (or a group of dispatches) took on the device in the last run.
 struct KernelTime {
     std::string name;

@@ -1,0 +1,169 @@
+// vkfuse run --skip: idle sensors skip fusion, the others are fused exactly
+// as with --skip off, and the metrics and summary say which was which.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "expect_error.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+struct Line {
+    std::string sensor;
+    bool idle = false, watch = false;
+    double fused_fraction = 0, change_score = -1, sharpness = 0, background_diff = 0;
+};
+
+double number_after(const std::string& line, const std::string& key) {
+    const std::string tag = "\"" + key + "\": ";
+    const std::size_t at = line.find(tag);
+    if (at == std::string::npos) {
+        ADD_FAILURE() << "no " << key << " in " << line;
+        return NAN;
+    }
+    return std::strtod(line.c_str() + at + tag.size(), nullptr);
+}
+
+std::vector<Line> metrics_of(const std::string& path, bool skipping) {
+    std::vector<Line> out;
+    const std::string text = read_bytes(path);
+    std::size_t start = 0;
+    for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
+        const std::string l = text.substr(start, end - start);
+        Line m;
+        const std::size_t s = l.find("\"sensor\": \"") + 11;
+        m.sensor = l.substr(s, l.find('"', s) - s);
+        EXPECT_TRUE(l.find("\"idle\": true") != std::string::npos || l.find("\"idle\": false") != std::string::npos) << l;
+        m.idle = l.find("\"idle\": true") != std::string::npos;
+        m.watch = l.find("\"watch\": true") != std::string::npos;
+        m.fused_fraction = number_after(l, "fused_fraction");
+        if (skipping) m.change_score = number_after(l, "change_score");
+        EXPECT_EQ(l.find("change_score") != std::string::npos, skipping) << l;
+        m.sharpness = number_after(l, "sharpness");
+        m.background_diff = number_after(l, "background_diff");
+        out.push_back(m);
+    }
+    return out;
+}
+
+// A tap every 0.4 s of sensor time (about 6 cycles), recorded, so that every
+// cycle captures the whole sequence (no watch cycles) and both runs see the
+// same frames: each cycle is judged on its own frames, so onset and release
+// show in the very cycle whose frames hold them. Cycles the skipping run
+// fused are bit for bit those of a run that skips nothing; the cycles it left
+// idle are those in which full fusion differs from the background by noise.
+TEST(CliRunSkip, TapOnsetAndReleaseShowInTheirOwnCycle) {
+    TempDir tmp;
+    const std::vector<std::string> common{"run", "--virtual-clock", "--cycles", "16", "--motion", "tap",
+                                          "--motion-period", "0.4"};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> a = common;
+        a.insert(a.end(), extra.begin(), extra.end());
+        return a;
+    };
+    const CliResult skip = run_cli(with({"--record", tmp.file("rec1"), "--out", tmp.file("skip")}));
+    ASSERT_EQ(skip.status, 0) << skip.err;
+    const CliResult full = run_cli(with({"--skip", "off", "--record", tmp.file("rec2"), "--out", tmp.file("full")}));
+    ASSERT_EQ(full.status, 0) << full.err;
+    const std::vector<Line> a = metrics_of(tmp.file("skip/metrics.jsonl"), true);
+    const std::vector<Line> b = metrics_of(tmp.file("full/metrics.jsonl"), false);
+    ASSERT_EQ(a.size(), 16u);
+    ASSERT_EQ(b.size(), 16u);
+    int onsets = 0, releases = 0;
+    for (std::size_t c = 0; c < a.size(); ++c) {
+        EXPECT_FALSE(b[c].idle);
+        EXPECT_FALSE(a[c].watch);
+        EXPECT_EQ(b[c].fused_fraction, 1.0);
+        const bool pressed = b[c].background_diff > 0.02;  // about 0.043 pressed, 0.004 lifted
+        EXPECT_EQ(a[c].idle, !pressed) << "cycle " << c << " score " << a[c].change_score;
+        EXPECT_EQ(a[c].fused_fraction, pressed ? 1.0 : 0.0) << "cycle " << c;
+        EXPECT_EQ(a[c].change_score > 8.0, pressed) << "cycle " << c;
+        if (pressed) {
+            EXPECT_EQ(a[c].sharpness, b[c].sharpness) << "cycle " << c;
+            EXPECT_EQ(a[c].background_diff, b[c].background_diff) << "cycle " << c;
+        } else {
+            EXPECT_LT(b[c].background_diff, 0.01) << "cycle " << c;
+        }
+        if (c > 0 && a[c].idle != a[c - 1].idle) ++(a[c].idle ? releases : onsets);
+    }
+    EXPECT_GE(onsets, 2);
+    EXPECT_GE(releases, 2);
+    EXPECT_NE(skip.out.find("\"skip\": {\"mode\": \"idle\", \"threshold\": 8, \"idle_fraction\": "), std::string::npos)
+        << skip.out;
+    EXPECT_NE(full.out.find("\"skip\": {\"mode\": \"off\""), std::string::npos) << full.out;
+}
+
+// Without a recording, an idle sensor captures only the first setting (a
+// watch cycle, one frame) until that frame changes; the cycle after the one
+// that saw the change captures and fuses the whole sequence.
+TEST(CliRunSkip, WatchCyclesWakeTheSensorWithinOneCycle) {
+    TempDir tmp;
+    const CliResult r = run_cli({"run", "--virtual-clock", "--cycles", "40", "--motion", "tap", "--motion-period",
+                                 "0.4", "--out", tmp.file("out")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<Line> a = metrics_of(tmp.file("out/metrics.jsonl"), true);
+    ASSERT_EQ(a.size(), 40u);
+    int wakes = 0, watches = 0;
+    for (std::size_t c = 0; c < a.size(); ++c) {
+        const bool changed = a[c].change_score > 8.0;
+        if (a[c].watch) {
+            ++watches;
+            EXPECT_TRUE(a[c].idle) << "cycle " << c;  // one setting is no cycle to fuse
+            EXPECT_EQ(a[c].fused_fraction, 0.0) << "cycle " << c;
+            if (changed && c + 1 < a.size()) {
+                ++wakes;
+                EXPECT_FALSE(a[c + 1].watch) << "cycle " << c + 1;
+                EXPECT_FALSE(a[c + 1].idle) << "cycle " << c + 1;
+                EXPECT_GT(a[c + 1].background_diff, 0.02) << "cycle " << c + 1;
+            }
+        } else {
+            EXPECT_EQ(a[c].idle, !changed) << "cycle " << c;
+            if (changed) {
+                EXPECT_GT(a[c].background_diff, 0.02) << "cycle " << c;
+            }
+        }
+    }
+    EXPECT_GE(wakes, 2);
+    EXPECT_GE(watches, 5);  // 9 here: the capture thread runs up to two cycles ahead of the verdicts
+}
+
+// Four sensors, two pressing: the two touching nothing are idle in every
+// cycle and cost no fusion; the pressing two never are.
+TEST(CliRunSkip, SensorsTouchingNothingAreIdle) {
+    TempDir tmp;
+    const CliResult r = run_cli({"run", "--virtual-clock", "--sensors", "4", "--pressing", "2", "--cycles", "3",
+                                 "--method", "brovey", "--out", tmp.file("out")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<Line> lines = metrics_of(tmp.file("out/metrics.jsonl"), true);
+    ASSERT_EQ(lines.size(), 12u);
+    for (const Line& l : lines) EXPECT_EQ(l.idle, l.sensor == "SIM-0003" || l.sensor == "SIM-0004") << l.sensor;
+    EXPECT_NEAR(number_after(r.out, "idle_fraction"), 0.5, 1e-12) << r.out;
+    EXPECT_NEAR(number_after(r.out, "fused_fraction"), 0.5, 1e-12) << r.out;
+    EXPECT_EQ(number_after(r.out, "submits"), 3) << r.out;
+}
+
+TEST(CliRunSkip, BadOptionsAreRefused) {
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"--skip", "tiles"}, "--skip tiles: expected off or idle"},
+        {{"--skip", "idle", "--background-frames", "1"}, "--skip idle: needs --background-frames of at least 2 (the noise each tile is judged by)"},
+        {{"--skip-threshold", "0"}, "--skip-threshold 0: expected a positive number"},
+        {{"--skip-threshold", "nan"}, "--skip-threshold nan: expected a positive number"},
+        {{"--skip", "off", "--skip-threshold", "5"}, "--skip-threshold 5: skipping is off"},
+        {{"--sensors", "2", "--pressing", "3"}, "--pressing 3: more than the 2 simulated sensors"},
+    };
+    for (const auto& [extra, message] : cases) {
+        std::vector<std::string> args{"run", "--virtual-clock", "--cycles", "1"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const CliResult r = run_cli(args);
+        EXPECT_EQ(r.status, 2) << message;
+        EXPECT_EQ(r.err, "vkfuse: " + message + "\n");
+        EXPECT_TRUE(r.out.empty());
+    }
+}
+
+}  // namespace
+}  // namespace vkfuse::test
