@@ -9,6 +9,7 @@
 
 #include "io/json_value.hpp"
 #include "report.hpp"
+#include "vkfuse/core/skip.hpp"
 
 namespace {
 
@@ -57,22 +58,53 @@ void check(const Value& doc, int min_cells, const std::string& require_backend) 
     if (!backend_seen) throw std::runtime_error("no measured " + require_backend + " cell");
 }
 
+// --scenes: every row has every field; no fused cycle differs from full
+// fusion (skip idle fuses a changed cycle exactly as skip off); the scene
+// with no contact is idle throughout at the default threshold and then costs
+// less than full fusion.
+void check_scenes(const Value& doc) {
+    if (!doc.is_array() || doc.array().empty()) throw std::runtime_error("top level is not a non-empty array");
+    bool none_idle = false;
+    for (std::size_t i = 0; i < doc.array().size(); ++i) {
+        const Value& row = doc.array()[i];
+        for (const char* key : {"scene", "skip", "threshold", "contact_fraction", "fused_fraction", "median_ms",
+                                "full_median_ms", "time_fraction", "max_abs_err_contact", "max_abs_err_outside"})
+            if (!row.find(key)) throw std::runtime_error("row " + std::to_string(i) + " lacks \"" + key + "\"");
+        if (row.find("max_abs_err_contact")->number() != 0)
+            throw std::runtime_error("row " + std::to_string(i) + ": a fused cycle differs from full fusion");
+        if (row.find("scene")->string() == "none" && row.find("skip")->string() == "idle" &&
+            row.find("threshold")->number() == vkfuse::SkipConfig{}.threshold) {
+            if (row.find("fused_fraction")->number() != 0) throw std::runtime_error("no contact, yet cycles were fused");
+            if (!(row.find("time_fraction")->number() < 1)) throw std::runtime_error("idle cycles cost full fusion");
+            none_idle = true;
+        }
+    }
+    if (!none_idle) throw std::runtime_error("no row for the scene without contact at the default threshold");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: vkfuse-bench-check-json FILE [--min-cells N] [--require-measured BACKEND]\n");
+        std::fprintf(stderr, "usage: vkfuse-bench-check-json FILE [--min-cells N] [--require-measured BACKEND] [--scenes]\n");
         return 2;
     }
     int min_cells = 1;
     std::string backend;
+    bool scenes = false;
+    for (int i = 2; i < argc; ++i)
+        if (std::string(argv[i]) == "--scenes") scenes = true;
     for (int i = 2; i + 1 < argc; i += 2) {
         const std::string opt = argv[i];
         if (opt == "--min-cells") min_cells = std::atoi(argv[i + 1]);
         if (opt == "--require-measured") backend = argv[i + 1];
     }
     try {
-        check(vkfuse::json::parse(read_file(argv[1]), argv[1]), min_cells, backend);
+        const Value doc = vkfuse::json::parse(read_file(argv[1]), argv[1]);
+        if (scenes)
+            check_scenes(doc);
+        else
+            check(doc, min_cells, backend);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: %s\n", argv[1], e.what());
         return 1;

@@ -12,6 +12,7 @@
 #include "options.hpp"
 #include "peer.hpp"
 #include "report.hpp"
+#include "scenes.hpp"
 #include "timing.hpp"
 #include "vk/copy_bandwidth.hpp"
 #include "vk/kernel_access.hpp"
@@ -237,6 +238,7 @@ void check_output_dir(const std::string& option, const std::string& path) {
 int run_bench(const Options& o) {
     check_output_dir("--json", o.json_path);
     check_output_dir("--plot", o.plot_path);
+    if (o.scenes) return run_scenes(o);
     const double budget = memory_budget(o.mem_limit_gib);
     const std::vector<Cell> cells = build_matrix(o, budget);
     if (o.list) {

@@ -72,6 +72,19 @@ Measurement:
   --list            print the cells (with estimated memory and skip reasons), run nothing
   --probe           measure the Vulkan device only (copy bandwidth, kernel access
                     costs), print the device lines, run no cell and no peer
+  --scenes          skipping instead of the matrix: simulated scenes (none: no
+                    contact; small: a ball pressed 0.1 mm, about 5% of the tiles;
+                    ball: 0.3 mm; coin; slide: the ball sliding), 24 cycles each at
+                    QVGA, K=3 (15,15,15+0,15,0+15,0,0), wavelet bior4.4 L3, run
+                    with skip off and idle at thresholds 4, 8 and 16, round robin;
+                    a row per scene and setting: scene, skip, threshold,
+                    contact_fraction (tiles changed at the default threshold),
+                    fused_fraction, median_ms, full_median_ms (skip off, same
+                    scene), time_fraction, max_abs_err_contact (fused cycles
+                    against full fusion), max_abs_err_outside (idle cycles
+                    against full fusion). --json writes the rows, --plot time
+                    against error per scene; --runs N: N cycles, rounded up to
+                    whole passes over the 24
 
 How it measures:
   A cycle is what a sensor loop does: Plan::run on all S*K frames (upload,

@@ -101,6 +101,7 @@ const std::map<std::string, std::function<void(Options&)>, std::less<>>& flags()
         {"--no-peers", [](Options& o) { o.peers = false; }},
         {"--list", [](Options& o) { o.list = true; }},
         {"--probe", [](Options& o) { o.probe = true; }},
+        {"--scenes", [](Options& o) { o.scenes = true; }},
         {"--help", [](Options& o) { o.help = true; }},
         {"-h", [](Options& o) { o.help = true; }},
     };

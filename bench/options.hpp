@@ -39,6 +39,7 @@ struct Options {
     double mem_limit_gib = 0;    // 0: 80% of the memory available at start
     bool list = false;           // print the cells and exit
     bool probe = false;          // measure the device, print it, run no cell
+    bool scenes = false;         // skipping on simulated scenes instead of the matrix (scenes.hpp)
     bool help = false;
 };
 
