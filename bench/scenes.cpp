@@ -91,7 +91,7 @@ struct Outcome {
     std::vector<double> ms;
     double fused_fraction = 0, changed_fraction = 0;
     std::vector<Image> fused;  // per cycle, from the first pass
-    std::vector<bool> idle;
+    std::vector<bool> idle;  // per cycle: not fused (idle or reused)
     double median_ms() {
         std::sort(ms.begin(), ms.end());
         return ms[ms.size() / 2];
@@ -134,7 +134,7 @@ std::vector<Outcome> run_plans(Context& ctx, const SceneData& d, const std::vect
                 if (r > 0) continue;
                 out[p].fused.push_back(fused);
                 const SkipOutcome o = plans[p].skip_outcome(0);
-                out[p].idle.push_back(o.idle);
+                out[p].idle.push_back(o.idle || o.reused);
                 out[p].fused_fraction += o.fused_fraction / double(d.cycles.size());
                 out[p].changed_fraction += o.changed_fraction / double(d.cycles.size());
             }
@@ -225,18 +225,19 @@ int run_scenes(const Options& o) {
     const int runs = std::max(1, o.runs / kCycles + 1);
     std::printf("vkfuse-bench --scenes: %s, QVGA, K=3 (%s), wavelet bior4.4 L3, %d cycles per scene x %d\n",
                 ctx.device().name.c_str(), kSequence, kCycles, runs);
-    std::printf("%-6s %-5s %9s %8s %7s %10s %10s %8s %12s %12s\n", "scene", "skip", "threshold", "contact", "fused",
+    std::printf("%-6s %-6s %9s %8s %7s %10s %10s %8s %12s %12s\n", "scene", "skip", "threshold", "contact", "fused",
                 "median_ms", "full_ms", "time", "err_contact", "err_outside");
     std::vector<Row> rows;
     for (const Scene& scene : scenes) {
         const SceneData d = capture(scene, sequence);
         std::vector<SkipConfig> skips = {SkipConfig{}};
-        for (double t : thresholds) skips.push_back({SkipPolicy::Idle, t});
+        for (SkipPolicy p : {SkipPolicy::Idle, SkipPolicy::Static})
+            for (double t : thresholds) skips.push_back({p, t});
         std::vector<Outcome> outs = run_plans(ctx, d, skips, runs);
         const double full_ms = outs[0].median_ms();
         // The share of tiles the contact changes, as the default threshold sees it.
         const auto at_default = std::find_if(skips.begin(), skips.end(), [](const SkipConfig& s) {
-            return s.policy != SkipPolicy::Off && s.threshold == SkipConfig{}.threshold;
+            return s.policy == SkipPolicy::Idle && s.threshold == SkipConfig{}.threshold;
         });
         const double contact = outs[std::size_t(at_default - skips.begin())].changed_fraction;
         for (std::size_t p = 0; p < skips.size(); ++p) {
@@ -249,7 +250,7 @@ int run_scenes(const Options& o) {
                 double& err = !off && out.idle[c] ? r.max_abs_err_outside : r.max_abs_err_contact;
                 err = std::max(err, e);
             }
-            std::printf("%-6s %-5s %9s %8.3f %7.3f %10.3f %10.3f %7.1f%% %12.3g %12.3g\n", r.scene.c_str(),
+            std::printf("%-6s %-6s %9s %8.3f %7.3f %10.3f %10.3f %7.1f%% %12.3g %12.3g\n", r.scene.c_str(),
                         r.skip.c_str(), off ? "-" : std::to_string(int(r.threshold)).c_str(), r.contact_fraction,
                         r.fused_fraction, r.median_ms, r.full_median_ms, 100 * r.median_ms / r.full_median_ms,
                         r.max_abs_err_contact, r.max_abs_err_outside);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,15 +60,15 @@ std::vector<Line> metrics_of(const std::string& path, bool skipping) {
 TEST(CliRunSkip, TapOnsetAndReleaseShowInTheirOwnCycle) {
     TempDir tmp;
     const std::vector<std::string> common{"run", "--virtual-clock", "--cycles", "16", "--motion", "tap",
-                                          "--motion-period", "0.4"};
+                                          "--motion-period", "0.4", "--skip"};
     auto with = [&](std::vector<std::string> extra) {
         std::vector<std::string> a = common;
         a.insert(a.end(), extra.begin(), extra.end());
         return a;
     };
-    const CliResult skip = run_cli(with({"--record", tmp.file("rec1"), "--out", tmp.file("skip")}));
+    const CliResult skip = run_cli(with({"idle", "--record", tmp.file("rec1"), "--out", tmp.file("skip")}));
     ASSERT_EQ(skip.status, 0) << skip.err;
-    const CliResult full = run_cli(with({"--skip", "off", "--record", tmp.file("rec2"), "--out", tmp.file("full")}));
+    const CliResult full = run_cli(with({"off", "--record", tmp.file("rec2"), "--out", tmp.file("full")}));
     ASSERT_EQ(full.status, 0) << full.err;
     const std::vector<Line> a = metrics_of(tmp.file("skip/metrics.jsonl"), true);
     const std::vector<Line> b = metrics_of(tmp.file("full/metrics.jsonl"), false);
@@ -136,7 +137,7 @@ TEST(CliRunSkip, WatchCyclesWakeTheSensorWithinOneCycle) {
 TEST(CliRunSkip, SensorsTouchingNothingAreIdle) {
     TempDir tmp;
     const CliResult r = run_cli({"run", "--virtual-clock", "--sensors", "4", "--pressing", "2", "--cycles", "3",
-                                 "--method", "brovey", "--out", tmp.file("out")});
+                                 "--method", "brovey", "--skip", "idle", "--out", tmp.file("out")});
     ASSERT_EQ(r.status, 0) << r.err;
     const std::vector<Line> lines = metrics_of(tmp.file("out/metrics.jsonl"), true);
     ASSERT_EQ(lines.size(), 12u);
@@ -146,9 +147,75 @@ TEST(CliRunSkip, SensorsTouchingNothingAreIdle) {
     EXPECT_EQ(number_after(r.out, "submits"), 3) << r.out;
 }
 
+// --skip static (the default): a sensor pressed and held still is fused in
+// its first cycle and reuses that result while its frames stay within noise
+// of those; a release makes it idle, a new press fuses again.
+TEST(CliRunSkip, HeldPressesReuseTheirFirstFusedCycle) {
+    TempDir tmp;
+    const CliResult r = run_cli({"run", "--virtual-clock", "--cycles", "30", "--motion", "tap", "--motion-period", "0.6",
+                                 "--record", tmp.file("rec"), "--out", tmp.file("out")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string text = read_bytes(tmp.file("out/metrics.jsonl"));
+    const std::vector<Line> a = metrics_of(tmp.file("out/metrics.jsonl"), true);
+    ASSERT_EQ(a.size(), 30u);
+    int fused = 0, reused = 0;
+    std::optional<Line> last_fused;
+    std::size_t start = 0;
+    for (std::size_t c = 0; c < a.size(); ++c) {
+        const std::size_t end = text.find('\n', start);
+        const bool is_reused = text.substr(start, end - start).find("\"reused\": true") != std::string::npos;
+        start = end + 1;
+        if (a[c].idle) {
+            EXPECT_FALSE(is_reused);
+            continue;
+        }
+        if (is_reused) {
+            ++reused;
+            ASSERT_TRUE(last_fused) << "cycle " << c << " reuses nothing";
+            EXPECT_EQ(a[c].fused_fraction, 0.0);
+            EXPECT_EQ(a[c].sharpness, last_fused->sharpness) << "cycle " << c;
+            EXPECT_EQ(a[c].background_diff, last_fused->background_diff) << "cycle " << c;
+        } else {
+            ++fused;
+            EXPECT_EQ(a[c].fused_fraction, 1.0);
+            last_fused = a[c];
+        }
+    }
+    EXPECT_GE(fused, 2);   // one per press
+    EXPECT_GE(reused, 4);  // the rest of each press
+    EXPECT_EQ(number_after(r.out, "submits"), fused) << r.out;
+}
+
+// The CPU path decides like the device: same recorded frames (full cycles),
+// same idle, reused and fused cycles.
+TEST(CliRunSkip, CpuAndVulkanSkipTheSameCycles) {
+    TempDir tmp;
+    std::vector<std::string> patterns;
+    for (const std::string backend : {"cpu", "vulkan"}) {
+        const CliResult r = run_cli({"run", "--virtual-clock", "--cycles", "12", "--motion", "tap", "--motion-period",
+                                     "0.4", "--method", "brovey", "--backend", backend, "--record",
+                                     tmp.file("rec-" + backend), "--out", tmp.file(backend)});
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::string text = read_bytes(tmp.file(backend + "/metrics.jsonl"));
+        std::string pattern;
+        std::size_t start = 0;
+        for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
+            const std::string l = text.substr(start, end - start);
+            pattern += l.find("\"idle\": true") != std::string::npos     ? 'i'
+                       : l.find("\"reused\": true") != std::string::npos ? 'r'
+                                                                          : 'f';
+        }
+        patterns.push_back(pattern);
+    }
+    EXPECT_EQ(patterns[0], patterns[1]);
+    EXPECT_NE(patterns[0].find('i'), std::string::npos) << patterns[0];
+    EXPECT_NE(patterns[0].find('r'), std::string::npos) << patterns[0];
+    EXPECT_NE(patterns[0].find('f'), std::string::npos) << patterns[0];
+}
+
 TEST(CliRunSkip, BadOptionsAreRefused) {
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-        {{"--skip", "tiles"}, "--skip tiles: expected off or idle"},
+        {{"--skip", "tiles"}, "--skip tiles: expected off, idle or static"},
         {{"--skip", "idle", "--background-frames", "1"}, "--skip idle: needs --background-frames of at least 2 (the noise each tile is judged by)"},
         {{"--skip-threshold", "0"}, "--skip-threshold 0: expected a positive number"},
         {{"--skip-threshold", "nan"}, "--skip-threshold nan: expected a positive number"},

@@ -11,7 +11,7 @@ namespace vkfuse::test {
 namespace {
 
 TEST(SkipPolicyNames, RoundTrip) {
-    for (SkipPolicy p : {SkipPolicy::Off, SkipPolicy::Idle}) EXPECT_EQ(parse_skip_policy(to_string(p)), p);
+    for (SkipPolicy p : {SkipPolicy::Off, SkipPolicy::Idle, SkipPolicy::Static}) EXPECT_EQ(parse_skip_policy(to_string(p)), p);
     EXPECT_FALSE(parse_skip_policy("tile"));
     EXPECT_FALSE(parse_skip_policy(""));
 }
@@ -59,6 +59,25 @@ TEST(ChangeScores, AreTheLargestDeviationInNoiseUnitsPerTile) {
     EXPECT_NEAR(s[1], 6.0, 1e-5);
     EXPECT_NEAR(s[2], 0.5, 1e-5);
     EXPECT_NEAR(s[3], 0.0, 1e-12);
+}
+
+// Against the previous frames, in units of the noise of a difference of
+// two frames: sqrt 2 times the tile's.
+TEST(StaticScores, AreTheLargestChangeSinceThePreviousFrames) {
+    SkipReference r;
+    Image mean(4, 40, 1), dev(4, 40, 1);
+    for (float& v : dev.data) v = 0.01f;
+    r.mean = {mean};
+    r.deviation = {dev};
+    Image now(4, 40, 1), before(4, 40, 1);
+    for (float& v : now.data) v = 0.4f;
+    before = now;
+    before.at(2, 35, 0) = 0.43f;  // tile 1
+    const std::vector<FrameView> a = {FrameView::of(now)}, b = {FrameView::of(before)};
+    const std::vector<double> s = static_scores_reference(a, b, r);
+    ASSERT_EQ(s.size(), 2u);
+    EXPECT_EQ(s[0], 0.0);
+    EXPECT_NEAR(s[1], 0.03 / (0.01 * std::sqrt(2.0)), 1e-5);
 }
 
 TEST(SkipReferenceCheck, NamesWhatIsWrong) {

@@ -178,6 +178,53 @@ TEST_F(VulkanSkip, IdleSensorsReturnTheFusedReferenceAndPressedOnesFuseExactly) 
     }
 }
 
+// SkipPolicy::Static: a sensor whose frames match its last fused cycle's
+// (within noise) reuses that result, bit for bit; one whose press moved is
+// fused again, exactly as a plan that skips nothing fuses it.
+TEST_F(VulkanSkip, StaticSensorsReuseTheirLastFusedResult) {
+    const Scene scene = make_scene(64, 96, 3, 2, 21);
+    Plan plan(ctx(), skip_config(scene, 2, haar(), SkipPolicy::Static, 8.0));
+    Plan full(ctx(), skip_config(scene, 2, haar(), SkipPolicy::Off, 8.0));
+    for (int s = 0; s < 2; ++s) {
+        plan.set_skip_reference(s, scene.reference);
+        plan.set_background(s, FrameView::of(scene.reference.mean[0]));
+        full.set_background(s, FrameView::of(scene.reference.mean[0]));
+    }
+    // Sensor 1 pressed in every run; its noise changes, its press does not
+    // until run 3, where a bright stripe appears.
+    std::vector<Image> first_result;
+    Metrics first_metrics;
+    for (int run = 0; run < 4; ++run) {
+        std::vector<std::vector<Bytes>> sensors = {frames_of(scene, std::uint32_t(100 + run), 2.0, false),
+                                                   frames_of(scene, std::uint32_t(200 + run), 2.0, true)};
+        if (run == 3)
+            for (Bytes& f : sensors[1])
+                for (int x = 0; x < 96 * 3; ++x) f[std::size_t(5 * 96 * 3 + x)] = 250;
+        const std::vector<FrameView> all = views(scene, sensors);
+        plan.run(all);
+        full.run(all);
+        EXPECT_TRUE(plan.skip_outcome(0).idle) << "run " << run;
+        const SkipOutcome o = plan.skip_outcome(1);
+        EXPECT_FALSE(o.idle) << "run " << run;
+        EXPECT_EQ(o.reused, run == 1 || run == 2) << "run " << run;
+        EXPECT_EQ(o.fused_fraction, o.reused ? 0.0 : 1.0) << "run " << run;
+        if (run == 0) {
+            first_result = {plan.fused(1)};
+            first_metrics = plan.metrics(1);
+        }
+        if (o.reused) {
+            EXPECT_EQ(plan.fused(1).data, first_result[0].data) << "run " << run;
+            EXPECT_EQ(plan.metrics(1).sharpness, first_metrics.sharpness) << "run " << run;
+            EXPECT_EQ(plan.metrics(1).background_diff, first_metrics.background_diff) << "run " << run;
+            EXPECT_NE(full.fused(1).data, first_result[0].data) << "run " << run;  // the noise did change
+        } else {
+            EXPECT_EQ(plan.fused(1).data, full.fused(1).data) << "run " << run;
+            EXPECT_EQ(plan.metrics(1).contrast, full.metrics(1).contrast) << "run " << run;
+        }
+    }
+    EXPECT_EQ(plan.submits(), 2u);  // runs 0 and 3
+}
+
 // A cycle in which nothing changed submits no fusion at all.
 TEST_F(VulkanSkip, AllIdleSubmitsNoFusion) {
     const Scene scene = make_scene(32, 40, 3, 2, 5);

@@ -40,7 +40,7 @@ constexpr OptionSpec kOptions[] = {
     {"--virtual-clock", "", "", "simulate on virtual clocks: as fast as the host allows, deterministic"},
     {"--camera-auto", "", "", "simulate the camera's auto exposure and white balance (default: locked)"},
     {"--background-frames", "", "N", "no-contact frames averaged per setting for the background (default 20; 0: none)"},
-    {"--skip", "", "MODE", "off, or idle: a sensor whose frames stay within its background noise is not fused (default idle)"},
+    {"--skip", "", "MODE", "off; idle: a sensor whose frames stay within its background noise is not fused; static: also one whose frames match its last fused cycle (default static)"},
     {"--skip-threshold", "", "K", "a tile changed when a sample lies over K x the tile's noise from the background (default 8)"},
     {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},
     {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},

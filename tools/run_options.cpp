@@ -72,10 +72,10 @@ int recorded_background_frames(const Dataset& d, const IlluminationSequence& seq
 }  // namespace
 
 void skip_options(const Args& args, RunOptions& o) {
-    o.skip.policy = o.background_frames >= 2 ? SkipPolicy::Idle : SkipPolicy::Off;
+    o.skip.policy = o.background_frames >= 2 ? SkipPolicy::Static : SkipPolicy::Off;
     if (auto v = args.value("--skip")) {
         const std::optional<SkipPolicy> p = parse_skip_policy(*v);
-        if (!p) fail("--skip " + *v + ": expected off or idle");
+        if (!p) fail("--skip " + *v + ": expected off, idle or static");
         if (*p != SkipPolicy::Off && o.background_frames < 2)
             fail("--skip " + *v + ": needs --background-frames of at least 2 (the noise each tile is judged by)");
         o.skip.policy = *p;

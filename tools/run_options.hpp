@@ -35,8 +35,8 @@ struct RunOptions {
     bool camera_auto = false;  // simulated DIGITs: auto exposure and white balance on
     std::optional<std::string> replay, record, out;
     int background_frames = 0;
-    // Skipping idle sensors: idle unless --skip says otherwise or there is
-    // no background to compare with (--background-frames 0 or 1).
+    // Skipping: static unless --skip says otherwise or there is no
+    // background to compare with (--background-frames 0 or 1).
     SkipConfig skip;
     std::optional<int> pressing;  // simulated DIGITs: how many press the object (the first N), default all
     double timeout_s = kLiveTimeoutSeconds;

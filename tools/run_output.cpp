@@ -96,6 +96,7 @@ std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const s
             ", \"fused_fraction\": " + json_number(s.skip.fused_fraction);
     if (skipping) {
         line += ", \"change_score\": " + json_number(s.skip.score);
+        if (s.skip.reused) line += ", \"reused\": true";
         if (s.watch) line += ", \"watch\": true";
     }
     return line + "}";

@@ -15,12 +15,13 @@ std::string_view to_string(SkipPolicy policy) {
     switch (policy) {
         case SkipPolicy::Off: return "off";
         case SkipPolicy::Idle: return "idle";
+        case SkipPolicy::Static: return "static";
     }
     return "?";
 }
 
 std::optional<SkipPolicy> parse_skip_policy(std::string_view text) {
-    for (SkipPolicy p : {SkipPolicy::Off, SkipPolicy::Idle})
+    for (SkipPolicy p : {SkipPolicy::Off, SkipPolicy::Idle, SkipPolicy::Static})
         if (text == to_string(p)) return p;
     return std::nullopt;
 }
@@ -92,31 +93,47 @@ std::vector<float> tile_noise(const SkipReference& r) {
     return out;
 }
 
-std::vector<double> change_scores_reference(std::span<const FrameView> frames, const SkipReference& r) {
+namespace {
+
+double sample(const FrameView& f, std::size_t i) {
+    return f.type == PixelType::U8 ? double(static_cast<const std::uint8_t*>(f.data)[i]) / 255.0
+                                   : double(static_cast<const float*>(f.data)[i]);
+}
+
+// The largest distance(k, i) / noise of its tile and setting, per tile.
+template <class Distance>
+std::vector<double> tile_scores(const SkipReference& r, std::size_t frames, double noise_scale, Distance distance) {
     const Image& first = r.mean.at(0);
     const int H = first.height, W = first.width, C = first.channels;
     const int tx = skip_tiles_x(W);
     const std::size_t tiles = std::size_t(tx) * std::size_t(skip_tiles_y(H));
     const std::vector<float> noise = tile_noise(r);
     std::vector<double> scores(tiles, 0.0);
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-        const FrameView& f = frames[k];
-        const Image& mean = r.mean.at(k);
+    for (std::size_t k = 0; k < frames; ++k)
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) {
                 const std::size_t t = std::size_t(y / kSkipTile) * std::size_t(tx) + std::size_t(x / kSkipTile);
                 for (int c = 0; c < C; ++c) {
                     const std::size_t i = (std::size_t(y) * W + x) * C + c;
-                    const double v = f.type == PixelType::U8
-                                         ? double(static_cast<const std::uint8_t*>(f.data)[i]) / 255.0
-                                         : double(static_cast<const float*>(f.data)[i]);
-                    const double m = double(skip_mean_fixed(mean.data[i])) / kMeanSteps;
-                    const double z = std::abs(v - m) / double(noise[k * tiles + t]);
-                    scores[t] = std::max(scores[t], z);
+                    scores[t] = std::max(scores[t], distance(k, i) / (double(noise[k * tiles + t]) * noise_scale));
                 }
             }
-    }
     return scores;
+}
+
+}  // namespace
+
+std::vector<double> change_scores_reference(std::span<const FrameView> frames, const SkipReference& r) {
+    return tile_scores(r, frames.size(), 1.0, [&](std::size_t k, std::size_t i) {
+        return std::abs(sample(frames[k], i) - double(skip_mean_fixed(r.mean.at(k).data[i])) / kMeanSteps);
+    });
+}
+
+std::vector<double> static_scores_reference(std::span<const FrameView> frames, std::span<const FrameView> previous,
+                                            const SkipReference& r) {
+    return tile_scores(r, frames.size(), std::sqrt(2.0), [&](std::size_t k, std::size_t i) {
+        return std::abs(sample(frames[k], i) - sample(previous[k], i));
+    });
 }
 
 }  // namespace vkfuse

@@ -42,6 +42,7 @@ public:
     void set_background(int sensor, const Image& bg) override {
         backgrounds_.at(std::size_t(sensor)) = convert<double>(bg);
         skip_.at(std::size_t(sensor)).idle_metrics.reset();
+        skip_.at(std::size_t(sensor)).kept = false;
     }
     void set_skip_reference(int sensor, const SkipReference& r) override {
         check_skip_reference(r, cfg_.height, cfg_.width, cfg_.channels, cfg_.frames,
@@ -52,6 +53,7 @@ public:
         for (const Image& m : r.mean) means.push_back(convert<double>(m));
         s.fused = convert<float>(fuse_reference(means, cfg_.fusion));
         s.idle_metrics.reset();
+        s.kept = false;
     }
     SkipOutcome skip_outcome(int sensor) override { return outcomes_.at(std::size_t(sensor)); }
     void run(std::span<const FrameView> frames) override {
@@ -74,14 +76,21 @@ private:
         std::optional<SkipReference> reference;
         Image fused;  // the reference's means fused: an idle cycle's result
         std::optional<Metrics> idle_metrics;
+        // SkipPolicy::Static: the last fused cycle's frames and result.
+        bool kept = false;
+        std::vector<std::vector<std::uint8_t>> previous;
+        Image kept_image;
+        Metrics kept_metrics;
     };
     std::vector<SensorSkip> skip_;
     std::vector<SkipOutcome> outcomes_;
     std::uint64_t runs_ = 0;
 
-    // Skipping: whether sensor s's frames stayed within its noise (then its
-    // result is the fused reference), as the device decides it.
-    bool idle(std::size_t s, std::span<const FrameView> frames) {
+    // Skipping: whether sensor s's frames stayed within its noise of its
+    // background (then its result is the fused reference) or, under
+    // SkipPolicy::Static, of its last fused cycle (then that cycle's result),
+    // as the device decides it.
+    bool skipped(std::size_t s, std::span<const FrameView> frames) {
         if (cfg_.skip.policy == SkipPolicy::Off) return false;
         SensorSkip& sk = skip_[s];
         if (!sk.reference) throw Error(ErrorKind::InvalidArgument, "plan run: no skip reference set for sensor " + std::to_string(s));
@@ -89,9 +98,15 @@ private:
         SkipOutcome& o = outcomes_[s];
         const auto changed = std::count_if(scores.begin(), scores.end(), [&](double v) { return !(v <= cfg_.skip.threshold); });
         o.idle = changed == 0;
-        o.fused_fraction = o.idle ? 0.0 : 1.0;
+        o.reused = !o.idle && sk.kept && still(s, frames);
+        o.fused_fraction = o.idle || o.reused ? 0.0 : 1.0;
         o.changed_fraction = double(changed) / double(scores.size());
         o.score = *std::max_element(scores.begin(), scores.end());
+        if (o.reused) {
+            fused_[s] = sk.kept_image;
+            metrics_[s] = sk.kept_metrics;
+            return true;
+        }
         if (!o.idle) return false;
         if (cfg_.want_metrics && !sk.idle_metrics) {
             const bool with_bg = cfg_.background_diff && !backgrounds_[s].data.empty();
@@ -102,14 +117,36 @@ private:
         return true;
     }
 
+    bool still(std::size_t s, std::span<const FrameView> frames) const {
+        const SensorSkip& sk = skip_[s];
+        std::vector<FrameView> previous;
+        for (std::size_t k = 0; k < frames.size(); ++k) {
+            FrameView v = frames[k];
+            v.data = sk.previous[k].data();
+            previous.push_back(v);
+        }
+        const std::vector<double> scores = static_scores_reference(frames, previous, *sk.reference);
+        return std::all_of(scores.begin(), scores.end(), [&](double v) { return v <= cfg_.skip.threshold; });
+    }
+
     void run_sensor(std::size_t s, std::span<const FrameView> frames) {
-        if (idle(s, frames)) return;
+        if (skipped(s, frames)) return;
         std::vector<ImageD> images;
         for (const FrameView& v : frames) images.push_back(to_double(v));
         const ImageD fused = fuse_reference(images, cfg_.fusion);
         const bool with_bg = cfg_.background_diff && !backgrounds_[s].data.empty();
         if (cfg_.want_metrics) metrics_[s] = metrics_reference(fused, with_bg ? &backgrounds_[s] : nullptr);
         fused_[s] = convert<float>(fused);
+        if (cfg_.skip.policy != SkipPolicy::Static) return;
+        SensorSkip& sk = skip_[s];
+        sk.previous.clear();
+        for (const FrameView& v : frames) {
+            const auto* bytes = static_cast<const std::uint8_t*>(v.data);
+            sk.previous.emplace_back(bytes, bytes + v.bytes());
+        }
+        sk.kept_image = fused_[s];
+        sk.kept_metrics = metrics_[s];
+        sk.kept = true;
     }
 };
 

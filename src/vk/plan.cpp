@@ -356,7 +356,14 @@ void Plan::run(std::span<const FrameView> frames) {
         }
     }
     if (im.skip) {
+        // SkipPolicy::Static: the results of the sensors the last run fused
+        // are kept before this run overwrites them.
+        if (im.skip->statics())
+            for (int s = 0; s < c.sensors; ++s)
+                if (im.skip->result_pending(s))
+                    im.skip->keep_result(s, c.want_fused ? &fused(s) : nullptr, c.want_metrics ? metrics(s) : Metrics{});
         const std::vector<int> fused_sensors = im.skip->detect();
+        im.skip->keep_frames(frames, fused_sensors);
         im.compact(frames, fused_sensors);
         im.fused_last_run = !fused_sensors.empty();
     } else {
@@ -373,7 +380,7 @@ const Image& Plan::fused(int sensor) const {
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: fused() before run()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
-    if (im.idle(sensor)) return im.skip->fused_reference(sensor);
+    if (im.skipped(sensor)) return im.skip->skipped_image(sensor);
     auto& img = im.fused[std::size_t(sensor)];
     if (!im.fused_fresh[std::size_t(sensor)]) {
         Image out(im.cfg.height, im.cfg.width, im.cfg.channels);
@@ -402,9 +409,9 @@ Metrics Plan::metrics(int sensor) const {
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: metrics() before run()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
-    if (im.idle(sensor)) {
+    if (im.skipped(sensor)) {
         const std::size_t n = std::size_t(im.cfg.height) * im.cfg.width * im.cfg.channels;
-        return im.skip->idle_metrics(
+        return im.skip->skipped_metrics(
             sensor, im.cfg.background_diff ? im.background_host.data() + std::size_t(sensor) * n : nullptr);
     }
     const std::size_t groups = vk::metric_groups(im.cfg), n_floats = groups * vk::kMetricPartialFloats;

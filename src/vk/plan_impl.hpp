@@ -167,7 +167,7 @@ struct Plan::Impl {
     bool brovey() const { return kind == vk::PlanKind::Fuse && cfg.fusion.method == Method::Brovey; }
     // Where sensor's results lie in the read-back buffer: its slot in the last run.
     std::size_t result_slot(int sensor) const { return skip ? std::size_t(*skip->slot(sensor)) : std::size_t(sensor); }
-    bool idle(int sensor) const { return skip && !skip->slot(sensor); }
+    bool skipped(int sensor) const { return skip && !skip->slot(sensor); }
     // Skipping: the fused sensors' frames and backgrounds into slots 0..F-1.
     void compact(std::span<const FrameView> frames, const std::vector<int>& fused_sensors);
     Impl(const Impl&) = delete;

@@ -21,12 +21,20 @@ SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& up
     means_ = Buffer(ctx, (samples * 2 + 3) / 4 * 4, MemoryUse::Upload);
     inv_noise_ = Buffer(ctx, S * K * tiles * 4, MemoryUse::Upload);
     scores_ = Buffer(ctx, S * tiles * 4, MemoryUse::Readback);
+    if (statics()) {
+        previous_ = Buffer(ctx, (samples + 3) / 4 * 4, MemoryUse::Upload);
+        statics_ = Buffer(ctx, S * tiles * 4, MemoryUse::Readback);
+    }
     indirect_ = Buffer(ctx, kMaxDispatches * sizeof(VkDispatchIndirectCommand), MemoryUse::Upload);
     reference_set_.assign(S, false);
     fused_.resize(S);
     idle_metrics_.resize(S);
     outcomes_.resize(S);
     slot_.resize(S);
+    pending_.assign(S, false);
+    kept_.assign(S, false);
+    kept_image_.resize(S);
+    kept_metrics_.resize(S);
     record(upload, addressed);
 }
 
@@ -34,13 +42,19 @@ void SkipState::record(const Buffer& upload, bool addressed) {
     sets_.emplace(ctx_);
     detect_.emplace(ctx_, 0);
     Recorder rec(ctx_, detect_->cmd(), VK_NULL_HANDLE, "", *sets_, addressed);
-    rec.dispatch("change_detect", {upload.span(), means_.span(), inv_noise_.span(), scores_.span()},
+    // Without Static the kernel never reads `previous` nor writes `statics`:
+    // the frames and the scores stand in for their bindings.
+    const DeviceSpan previous = statics() ? previous_.span() : upload.span();
+    const DeviceSpan static_scores = statics() ? statics_.span() : scores_.span();
+    rec.dispatch("change_detect",
+                 {upload.span(), means_.span(), inv_noise_.span(), scores_.span(), previous, static_scores},
                  PushConstants()
                      .u32(std::uint32_t(cfg_.width))
                      .u32(std::uint32_t(cfg_.height))
                      .u32(std::uint32_t(cfg_.channels))
                      .u32(std::uint32_t(cfg_.frames))
-                     .u32(cfg_.width % 4 == 0),
+                     .u32(cfg_.width % 4 == 0)
+                     .u32(statics()),
                  tiles_x_, tiles_y_, std::uint32_t(cfg_.sensors));
     rec.finish();
 }
@@ -61,14 +75,50 @@ void SkipState::set_reference(int sensor, const SkipReference& reference) {
     std::vector<ImageD> means_d;
     for (const Image& m : reference.mean) means_d.push_back(convert<double>(m));
     fused_[std::size_t(sensor)] = convert<float>(fuse_reference(means_d, cfg_.fusion));
-    idle_metrics_[std::size_t(sensor)].reset();
+    background_changed(sensor);
     reference_set_[std::size_t(sensor)] = true;
+}
+
+void SkipState::background_changed(int sensor) {
+    const std::size_t s = std::size_t(sensor);
+    idle_metrics_.at(s).reset();
+    pending_.at(s) = false;  // a kept result's metrics would be against the old background
+    kept_.at(s) = false;
+}
+
+void SkipState::keep_frames(std::span<const FrameView> frames, const std::vector<int>& fused_sensors) {
+    if (!statics()) return;
+    const std::size_t K = std::size_t(cfg_.frames);
+    const std::size_t n = std::size_t(cfg_.height) * std::size_t(cfg_.width) * std::size_t(cfg_.channels);
+    auto* dst = static_cast<std::uint8_t*>(previous_.mapped());
+    for (int s : fused_sensors) {
+        for (std::size_t k = 0; k < K; ++k)
+            std::memcpy(dst + (std::size_t(s) * K + k) * n, frames[std::size_t(s) * K + k].data, n);
+        pending_[std::size_t(s)] = true;
+        kept_[std::size_t(s)] = false;
+    }
+}
+
+void SkipState::keep_result(int sensor, const Image* fused, const Metrics& metrics) {
+    const std::size_t s = std::size_t(sensor);
+    if (fused) kept_image_[s] = *fused;
+    kept_metrics_[s] = metrics;
+    pending_[s] = false;
+    kept_[s] = true;
+}
+
+const Image& SkipState::skipped_image(int sensor) const {
+    const std::size_t s = std::size_t(sensor);
+    return outcomes_.at(s).reused ? kept_image_[s] : fused_[s];
 }
 
 std::vector<int> SkipState::detect() {
     const std::size_t tiles = tiles_x_ * tiles_y_;
-    std::memset(scores_.mapped(), 0, std::size_t(cfg_.sensors) * tiles * sizeof(float));  // the kernel's atomicMax starts at 0
+    // The kernel's atomicMax starts from 0.
+    std::memset(scores_.mapped(), 0, std::size_t(cfg_.sensors) * tiles * sizeof(float));
+    if (statics()) std::memset(statics_.mapped(), 0, std::size_t(cfg_.sensors) * tiles * sizeof(float));
     detect_->submit_and_wait();
+    const float* still = statics() ? static_cast<const float*>(statics_.mapped()) : nullptr;
     const float* scores = static_cast<const float*>(scores_.mapped());
     std::vector<int> fused;
     for (int s = 0; s < cfg_.sensors; ++s) {
@@ -82,11 +132,17 @@ std::vector<int> SkipState::detect() {
         }
         SkipOutcome& o = outcomes_[std::size_t(s)];
         o.idle = changed == 0;
-        o.fused_fraction = o.idle ? 0.0 : 1.0;
+        o.reused = false;
+        if (!o.idle && still && kept_[std::size_t(s)]) {
+            o.reused = true;
+            for (std::size_t t = 0; t < tiles && o.reused; ++t) o.reused = still[std::size_t(s) * tiles + t] <= cfg_.skip.threshold;
+        }
+        const bool skipped = o.idle || o.reused;
+        o.fused_fraction = skipped ? 0.0 : 1.0;
         o.changed_fraction = double(changed) / double(tiles);
         o.score = top;
-        slot_[std::size_t(s)] = o.idle ? std::nullopt : std::optional<int>(int(fused.size()));
-        if (!o.idle) fused.push_back(s);
+        slot_[std::size_t(s)] = skipped ? std::nullopt : std::optional<int>(int(fused.size()));
+        if (!skipped) fused.push_back(s);
     }
     auto* args = static_cast<VkDispatchIndirectCommand*>(indirect_.mapped());
     for (std::size_t d = 0; d < dispatches_.size(); ++d)
@@ -94,7 +150,8 @@ std::vector<int> SkipState::detect() {
     return fused;
 }
 
-Metrics SkipState::idle_metrics(int sensor, const float* planar_background) {
+Metrics SkipState::skipped_metrics(int sensor, const float* planar_background) {
+    if (outcomes_.at(std::size_t(sensor)).reused) return kept_metrics_[std::size_t(sensor)];
     std::optional<Metrics>& cached = idle_metrics_.at(std::size_t(sensor));
     if (cached) return *cached;
     const ImageD image = convert<double>(fused_.at(std::size_t(sensor)));

@@ -7,7 +7,10 @@
 //   fusion command buffer, recorded once with indirect dispatches  2nd submit, only when F > 0
 //
 // An idle sensor's result is its fused reference (fused once, on the host, in
-// double precision) and that image's metrics, computed once.
+// double precision) and that image's metrics, computed once. Under
+// SkipPolicy::Static the frames of each sensor's last fused cycle are kept on
+// the device, and its result on the host (taken from the read-back buffer at
+// the start of the next run): a sensor whose frames still match them reuses it.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -44,14 +47,22 @@ public:
     std::vector<int> detect();
 
     const SkipOutcome& outcome(int sensor) const { return outcomes_.at(std::size_t(sensor)); }
-    // Slot of sensor's results in the last run, nullopt when it was idle.
+    // Slot of sensor's results in the last run, nullopt when it was skipped.
     std::optional<int> slot(int sensor) const { return slot_.at(std::size_t(sensor)); }
-    const Image& fused_reference(int sensor) const { return fused_.at(std::size_t(sensor)); }
-    // The cached metrics of the fused reference (with background_diff
-    // against `background` when given): computed on first use after the
-    // reference or the background changed.
-    Metrics idle_metrics(int sensor, const float* planar_background);
-    void background_changed(int sensor) { idle_metrics_.at(std::size_t(sensor)).reset(); }
+    // A skipped sensor's result: the fused reference, or the kept result.
+    const Image& skipped_image(int sensor) const;
+    // Its metrics: the kept ones, or those of the fused reference (with
+    // background_diff against `background` when given), computed on first
+    // use after the reference or the background changed.
+    Metrics skipped_metrics(int sensor, const float* planar_background);
+    void background_changed(int sensor);
+
+    bool statics() const { return cfg_.skip.policy == SkipPolicy::Static; }
+    // The fused sensors' frames become what their next cycles are compared with.
+    void keep_frames(std::span<const FrameView> frames, const std::vector<int>& fused_sensors);
+    // Whether sensor's result of the last run is still to be kept; keep it.
+    bool result_pending(int sensor) const { return pending_.at(std::size_t(sensor)); }
+    void keep_result(int sensor, const Image* fused, const Metrics& metrics);
 
 private:
     Context::Impl& ctx_;
@@ -60,6 +71,8 @@ private:
     Buffer means_;      // S*K*C planes, float32
     Buffer inv_noise_;  // S*K*tiles: 1 / tile noise
     Buffer scores_;     // S*tiles, read back
+    Buffer previous_;   // Static: S*K frames of each sensor's last fused cycle, 8-bit
+    Buffer statics_;    // Static: S*tiles scores against them, read back
     Buffer indirect_;   // VkDispatchIndirectCommand per fusion dispatch
     std::optional<DescriptorSets> sets_;
     std::optional<CommandSlot> detect_;
@@ -69,6 +82,9 @@ private:
     std::vector<std::optional<Metrics>> idle_metrics_;
     std::vector<SkipOutcome> outcomes_;
     std::vector<std::optional<int>> slot_;
+    std::vector<bool> pending_, kept_;  // Static: result to keep at the next run; kept
+    std::vector<Image> kept_image_;
+    std::vector<Metrics> kept_metrics_;
 
     void record(const Buffer& upload, bool addressed);
 };

@@ -13,10 +13,13 @@
 namespace vkfuse {
 
 enum class SkipPolicy {
-    Off,   // every cycle of every sensor is fused
-    Idle,  // a sensor none of whose tiles changed is not fused (it is "idle")
+    Off,     // every cycle of every sensor is fused
+    Idle,    // a sensor none of whose tiles changed from its background is not fused (it is "idle")
+    // Idle, and a sensor none of whose tiles changed since the last cycle it
+    // was fused reuses that cycle's result (a held, still press).
+    Static,
 };
-std::string_view to_string(SkipPolicy policy);  // "off", "idle"
+std::string_view to_string(SkipPolicy policy);  // "off", "idle", "static"
 std::optional<SkipPolicy> parse_skip_policy(std::string_view text);
 
 // Change detection works on square tiles of this many pixels a side (the
@@ -39,6 +42,7 @@ struct SkipConfig {
 // How one sensor's cycle was treated (Plan::skip_outcome, SensorCycle::skip).
 struct SkipOutcome {
     bool idle = false;             // not fused: its result is the fused reference and that image's metrics
+    bool reused = false;           // not fused: its result is that of the last cycle it was fused in
     double fused_fraction = 1;     // share of the frame's tiles fused this run
     double changed_fraction = 1;   // share of tiles whose score exceeded the threshold
     double score = 0;              // the largest tile score
@@ -76,6 +80,12 @@ std::uint16_t skip_mean_fixed(float mean);
 // it), divided by the tile's noise under setting k. In double precision: what
 // the device's scores are tested against. Frames are U8 (v / 255) or F32.
 std::vector<double> change_scores_reference(std::span<const FrameView> frames, const SkipReference& reference);
+
+// SkipPolicy::Static: each tile's largest |frame_k - previous_k| against the
+// frames of the last fused cycle, in units of the noise of a difference of
+// two frames (the tile's noise times sqrt 2).
+std::vector<double> static_scores_reference(std::span<const FrameView> frames, std::span<const FrameView> previous,
+                                            const SkipReference& reference);
 
 // Throws Error(InvalidArgument) naming `what` unless reference holds K
 // finite images of shape height x width x channels in both fields.
