@@ -181,10 +181,10 @@ TEST_F(VulkanSkip, IdleSensorsReturnTheFusedReferenceAndPressedOnesFuseExactly) 
 // SkipPolicy::Static: a sensor whose frames match its last fused cycle's
 // (within noise) reuses that result, bit for bit; one whose press moved is
 // fused again, exactly as a plan that skips nothing fuses it.
-TEST_F(VulkanSkip, StaticSensorsReuseTheirLastFusedResult) {
+void static_reuse(Context& context) {
     const Scene scene = make_scene(64, 96, 3, 2, 21);
-    Plan plan(ctx(), skip_config(scene, 2, haar(), SkipPolicy::Static, 8.0));
-    Plan full(ctx(), skip_config(scene, 2, haar(), SkipPolicy::Off, 8.0));
+    Plan plan(context, skip_config(scene, 2, haar(), SkipPolicy::Static, 8.0));
+    Plan full(context, skip_config(scene, 2, haar(), SkipPolicy::Off, 8.0));
     for (int s = 0; s < 2; ++s) {
         plan.set_skip_reference(s, scene.reference);
         plan.set_background(s, FrameView::of(scene.reference.mean[0]));
@@ -223,6 +223,22 @@ TEST_F(VulkanSkip, StaticSensorsReuseTheirLastFusedResult) {
         }
     }
     EXPECT_EQ(plan.submits(), 2u);  // runs 0 and 3
+}
+
+// The same through device addresses (plans beyond maxStorageBufferRange):
+// the detection and the indirect dispatches in the kernels' "_addr" variants.
+Context& addressed_context() {
+    static Context ctx([] {
+        ContextOptions o = validated_options();
+        o.device_addresses_only = true;
+        return o;
+    }());
+    return ctx;
+}
+
+TEST_F(VulkanSkip, StaticSensorsReuseTheirLastFusedResult) {
+    static_reuse(ctx());
+    static_reuse(addressed_context());
 }
 
 // A cycle in which nothing changed submits no fusion at all.
