@@ -61,7 +61,7 @@ stage_done "fuzzing (3 x $FUZZ_SECONDS s)"
 #    QVGA cycle on lavapipe: 100,000 would take 45 minutes).
 ./build/tests/vkfuse_soak --cycles 100000 --width 64 --height 48
 stage_done "soak: Plan::run (100k cycles)"
-bash tests/soak/rig_soak.sh build/vkfuse 100000 --method brovey --backend cpu
+bash tests/soak/rig_soak.sh build/vkfuse 100000 --method brovey --backend cpu --motion tap --motion-period 0.4
 stage_done "soak: vkfuse run cpu (100k)"
-bash tests/soak/rig_soak.sh build/vkfuse 10000 --method wavelet --backend vulkan
+bash tests/soak/rig_soak.sh build/vkfuse 10000 --method wavelet --backend vulkan --skip off
 stage_done "soak: vkfuse run vulkan (10k)"

@@ -11,6 +11,7 @@
 #include "vkfuse/core/io.hpp"
 #include "vkfuse/core/metrics.hpp"
 #include "vkfuse/core/reference.hpp"
+#include "vkfuse/core/skip.hpp"
 
 // vk: a Vulkan device and the plans recorded on it
 #include "vkfuse/vk/context.hpp"
