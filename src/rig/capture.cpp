@@ -94,28 +94,30 @@ void run_capture(const CaptureJob& job) {
     const RigConfig& cfg = *job.config;
     const bool may_watch = cfg.watch_when_idle && cfg.skip.policy != SkipPolicy::Off &&
                            cfg.judging == FrameJudging::Timing && cfg.sequence.size() > 1;
-    while (true) {
+    // Whether delivery n watches depends on the verdicts alone, never on how
+    // far the rig has got, so a run on virtual clocks stays deterministic:
+    // after a watch cycle, on its verdict (a change is followed at once by a
+    // whole sequence); after a whole cycle, on the verdict two back, and only
+    // where that one was idle also on the last (the capture of a busy sensor
+    // keeps running a cycle ahead of its fusion).
+    bool last_watched = false;
+    for (std::uint64_t n = 0;; ++n) {
         bool watch = false;
         if (may_watch) {
-            std::lock_guard lock(hub.mutex);
-            watch = slot.watching;
-        }
-        std::vector<Frame> frames = watch ? switcher.capture(cfg.sequence.front(), 1) : switcher.next_cycle(cfg.sequence);
-        if (watch) {
-            // Captured while the last watch cycle was being judged; delivered
-            // only if that one saw no change, else the whole sequence is.
             std::unique_lock lock(hub.mutex);
-            hub.changed.wait(lock, [&] { return hub.stop || slot.watch_judged >= slot.watch_sent; });
+            auto verdict = [&](std::uint64_t d) {
+                hub.changed.wait(lock, [&] { return hub.stop || slot.judged > d; });
+                return !hub.stop && d >= slot.verdicts_from && slot.idle_verdict(d);
+            };
+            if (last_watched)
+                watch = verdict(n - 1);
+            else if (n >= 2)
+                watch = verdict(n - 2) && verdict(n - 1);
             if (hub.stop) return;
-            watch = slot.watching;
-            lock.unlock();
-            if (!watch) frames = switcher.next_cycle(cfg.sequence);
         }
-        if (!deliver(hub, slot, std::move(frames))) return;
-        if (watch) {
-            std::lock_guard lock(hub.mutex);
-            ++slot.watch_sent;
-        }
+        if (!deliver(hub, slot, watch ? switcher.capture(cfg.sequence.front(), 1) : switcher.next_cycle(cfg.sequence)))
+            return;
+        last_watched = watch;
     }
 }
 

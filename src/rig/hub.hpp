@@ -1,7 +1,9 @@
 // rig/hub.hpp - what the capture threads and the rig share, and the capture
 // thread itself.
 #pragma once
+#include <array>
 #include <condition_variable>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -24,12 +26,14 @@ struct SensorSlot {
     bool background_applied = false;  // rig side: handed to the fusion engine
     std::vector<Image> background;    // per slot of the sequence
     std::vector<Image> deviation;     // per slot: the background frames' per-pixel standard deviation
-    // Watch cycles (RigConfig::watch_when_idle): set by the rig after each
-    // cycle it fused; the capture thread waits for the verdict on a watch
-    // cycle before it captures again, so a change is followed at once by a
-    // whole sequence.
-    bool watching = false;
-    std::uint64_t watch_sent = 0, watch_judged = 0;
+    // Watch cycles (RigConfig::watch_when_idle): the rig's verdict on each
+    // cycle it took from this sensor (by delivery, from 0): idle with no
+    // changed tile, or not. The last few only; judged counts them all.
+    std::uint64_t judged = 0;
+    std::array<bool, 4> idle_verdicts{};
+    bool idle_verdict(std::uint64_t delivery) const { return idle_verdicts[delivery % 4]; }
+    // A background applied after cycles began: verdicts before it do not count.
+    std::uint64_t verdicts_from = 0;
     bool failed = false;
     std::string error;
     bool exited = false;

@@ -188,7 +188,7 @@ void Rig::Impl::apply_new_backgrounds() {
         idle_metrics[i].reset();
         idle_image[i] = nullptr;
         std::lock_guard lock(hub->mutex);
-        hub->slots[i].watching = false;
+        hub->slots[i].verdicts_from = hub->slots[i].judged;
     }
 }
 
@@ -334,8 +334,8 @@ void Rig::Impl::fuse(CycleResult& result) {
         }
         std::lock_guard lock(hub->mutex);
         rig::SensorSlot& slot = hub->slots[i];
-        slot.watching = r.skip.idle && r.skip.changed_fraction == 0;
-        if (r.watch) ++slot.watch_judged;
+        slot.idle_verdicts[slot.judged % 4] = r.skip.idle && r.skip.changed_fraction == 0;
+        ++slot.judged;
     }
     hub->changed.notify_all();
 }
