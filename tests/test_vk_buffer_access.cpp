@@ -17,15 +17,6 @@
 namespace vkfuse::test {
 namespace {
 
-Context& addressed_context() {
-    static Context ctx([] {
-        ContextOptions o = validated_options();
-        o.device_addresses_only = true;
-        return o;
-    }());
-    return ctx;
-}
-
 struct Shape {
     int height, width, channels, frames, sensors;
     PixelType input;

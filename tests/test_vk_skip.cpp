@@ -227,15 +227,6 @@ void static_reuse(Context& context) {
 
 // The same through device addresses (plans beyond maxStorageBufferRange):
 // the detection and the indirect dispatches in the kernels' "_addr" variants.
-Context& addressed_context() {
-    static Context ctx([] {
-        ContextOptions o = validated_options();
-        o.device_addresses_only = true;
-        return o;
-    }());
-    return ctx;
-}
-
 TEST_F(VulkanSkip, StaticSensorsReuseTheirLastFusedResult) {
     static_reuse(ctx());
     static_reuse(addressed_context());

@@ -23,6 +23,15 @@ Context& shared_context() {
     return ctx;
 }
 
+Context& addressed_context() {
+    static Context ctx([] {
+        ContextOptions o = validated_options();
+        o.device_addresses_only = true;
+        return o;
+    }());
+    return ctx;
+}
+
 std::vector<Context*> filter_arithmetic_contexts() {
     Context& shared = shared_context();
     const bool shared_is_float64 = shared.filter_arithmetic() == FilterArithmetic::Float64;

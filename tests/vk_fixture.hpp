@@ -25,6 +25,9 @@ ContextOptions validated_options();
 // first, then, where the device also offers the other one, a context using it
 // (created on first use), so the path a GPU takes is tested on lavapipe too.
 std::vector<Context*> filter_arithmetic_contexts();
+// A validated context whose plans all reach their buffers through device
+// addresses (ContextOptions::device_addresses_only), created on first use.
+Context& addressed_context();
 
 class VulkanTest : public ::testing::Test {
 protected:
