@@ -61,8 +61,7 @@ PlanConfig plan_config(const Cell& cell, bool profile) {
     cfg.sensors = cell.sensors;
     cfg.input = PixelType::F32;
     cfg.want_fused = true;
-    cfg.want_metrics = true;
-    cfg.background_diff = true;
+    cfg.metrics = MetricSet::all();
     cfg.profile = profile;
     cfg.precision = cell.precision;
     return cfg;

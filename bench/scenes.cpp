@@ -105,7 +105,7 @@ Plan make_plan(Context& ctx, const SceneData& d, SkipConfig skip) {
     cfg.width = first.width;
     cfg.frames = int(d.reference.mean.size());
     cfg.input = PixelType::U8;
-    cfg.background_diff = true;
+    cfg.metrics = MetricSet::all();
     cfg.skip = skip;
     Plan plan(ctx, cfg);
     plan.set_background(0, FrameView::of(d.background));

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
-// The three metrics in one pass over the fused planes (s*C + c; workgroup z =
+// The metrics a plan asked for, in one pass over the fused planes (s*C + c; workgroup z =
 // sensor s). Each workgroup writes one partial of 8 floats straight into the
 // host-visible read-back buffer:
 //   (sum of gradient magnitude of luma, sum over channels of |I - B|,
@@ -30,6 +30,8 @@ layout(push_constant, std430) uniform Push {
     uint channels;
     uint groups;  // workgroups per sensor
     uint has_bg;
+    uint want_sharpness;  // the gradient pass: a plan asked for sharpness
+    uint want_contrast;   // the luma moments: a plan asked for contrast
     uint quads;   // width % 4 == 0: rows are whole plane4 elements
     uint pixels;  // width * height
     uint write_image;  // quads only: also pack the planes into the read-back image (pack.comp's work)
@@ -144,8 +146,11 @@ void main() {
                 nb = C == 3u ? quad(base, 2u, x, y + 1) : nr;
                 below = luma_quad(nr, ng, nb);
             }
-            float left = x > 0 ? luma_at(base, x - 1, y) : 0.0;
-            float right = x + 4 < pc.width ? luma_at(base, x + 4, y) : 0.0;
+            float left = 0.0, right = 0.0;
+            if (pc.want_sharpness != 0u) {
+                left = x > 0 ? luma_at(base, x - 1, y) : 0.0;
+                right = x + 4 < pc.width ? luma_at(base, x + 4, y) : 0.0;
+            }
             vec4 d = vec4(0.0);
             if (pc.has_bg != 0u) {
                 d = abs(r - bg_quad(base, 0u, x, y));
@@ -153,10 +158,14 @@ void main() {
             }
             for (int p = 0; p < 4; ++p) {
                 if (x + p >= pc.width) break;
-                float before = p == 0 ? left : at[p - 1], after = p == 3 ? right : at[p + 1];
-                float gx = gradient(before, at[p], after, x + p, pc.width);
-                float gy = gradient(above[p], at[p], below[p], y, pc.height);
-                kahan_add(sums, comp, vec2(magnitude(gx, gy), d[p]));
+                float g = 0.0;
+                if (pc.want_sharpness != 0u) {
+                    float before = p == 0 ? left : at[p - 1], after = p == 3 ? right : at[p + 1];
+                    g = magnitude(gradient(before, at[p], after, x + p, pc.width),
+                                  gradient(above[p], at[p], below[p], y, pc.height));
+                }
+                kahan_add(sums, comp, vec2(g, d[p]));
+                if (pc.want_contrast == 0u) continue;
                 // Welford's update of the deviations' moments.
                 float dev = at[p] - y0;
                 m.n += 1.0;

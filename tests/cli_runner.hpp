@@ -1,6 +1,8 @@
 // cli_runner.hpp - runs the built `vkfuse` binary (VKFUSE_CLI) and captures
 // its exit status, stdout and stderr. Header-only for the test_cli_* files.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -19,22 +21,23 @@ extern char** environ;
 
 namespace vkfuse::test {
 
+// text's lines, without their newlines (a last line may lack one).
+inline std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    for (std::size_t start = 0, end; start < text.size(); start = end + 1) {
+        end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        lines.push_back(text.substr(start, end - start));
+    }
+    return lines;
+}
+
 struct CliResult {
     int status = -1;  // exit status, or 128 + signal
     std::string out;
     std::string err;
 
-    std::vector<std::string> err_lines() const {
-        std::vector<std::string> lines;
-        std::size_t start = 0;
-        while (start < err.size()) {
-            std::size_t end = err.find('\n', start);
-            if (end == std::string::npos) end = err.size();
-            lines.push_back(err.substr(start, end - start));
-            start = end + 1;
-        }
-        return lines;
-    }
+    std::vector<std::string> err_lines() const { return lines_of(err); }
 };
 
 // The current environment with extra "NAME=value" entries replacing any of the same name.
@@ -117,6 +120,17 @@ inline CliResult run_cli(const std::vector<std::string>& args, const std::vector
     result.err = read_bytes(err_path);
     if (killed) result.err += "(cli_runner: killed after " + std::to_string(kCliTimeout.count()) + " s)\n";
     return result;
+}
+
+// `vkfuse run --virtual-clock --cycles 1` plus extra is refused before any
+// work: status 2, the one line "vkfuse: <message>", nothing on stdout.
+inline void expect_run_refused(const std::vector<std::string>& extra, const std::string& message) {
+    std::vector<std::string> args{"run", "--virtual-clock", "--cycles", "1"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult r = run_cli(args);
+    EXPECT_EQ(r.status, 2) << message;
+    EXPECT_EQ(r.err, "vkfuse: " + message + "\n");
+    EXPECT_TRUE(r.out.empty());
 }
 
 }  // namespace vkfuse::test

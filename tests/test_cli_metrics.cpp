@@ -24,16 +24,6 @@ std::optional<double> json_field(const std::string& line, const std::string& key
     return v;
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    for (std::size_t start = 0, end; start < text.size(); start = end + 1) {
-        end = text.find('\n', start);
-        if (end == std::string::npos) end = text.size();
-        lines.push_back(text.substr(start, end - start));
-    }
-    return lines;
-}
-
 void expect_relative(double got, double want, double tolerance, const std::string& what) {
     EXPECT_LE(std::abs(got - want), tolerance * std::max(std::abs(want), 1e-300)) << what << ": " << got << " vs " << want;
 }

@@ -228,14 +228,7 @@ TEST(CliRunSkip, BadOptionsAreRefused) {
         {{"--skip", "off", "--skip-threshold", "5"}, "--skip-threshold 5: skipping is off"},
         {{"--sensors", "2", "--pressing", "3"}, "--pressing 3: more than the 2 simulated sensors"},
     };
-    for (const auto& [extra, message] : cases) {
-        std::vector<std::string> args{"run", "--virtual-clock", "--cycles", "1"};
-        args.insert(args.end(), extra.begin(), extra.end());
-        const CliResult r = run_cli(args);
-        EXPECT_EQ(r.status, 2) << message;
-        EXPECT_EQ(r.err, "vkfuse: " + message + "\n");
-        EXPECT_TRUE(r.out.empty());
-    }
+    for (const auto& [extra, message] : cases) expect_run_refused(extra, message);
 }
 
 }  // namespace

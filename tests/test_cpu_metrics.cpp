@@ -107,5 +107,18 @@ TEST(CpuMetrics, CompensatedSumKeepsFullPrecisionOverManyTerms) {
     EXPECT_GT(std::abs(naive - 1e6), 1e-6);  // the naive sum really is worse
 }
 
+TEST(CpuMetrics, MetricListsParseAndPrint) {
+    for (unsigned bits = 1; bits < 8; ++bits) {
+        MetricSet which;
+        for (Metric m : kAllMetrics) which = which.with(m, (bits >> unsigned(m)) & 1u);
+        EXPECT_EQ(MetricSet::parse(which.to_string()), which) << which.to_string();
+    }
+    EXPECT_EQ(MetricSet::parse("contrast,sharpness"), (MetricSet{Metric::Sharpness, Metric::Contrast}));
+    EXPECT_EQ(MetricSet::all().to_string(), "sharpness,contrast,background_diff");
+    for (const char* bad : {"", ",", "sharpness,", "sharpness,sharpness", "Sharpness", "contrast;sharpness", "all"})
+        EXPECT_FALSE(MetricSet::parse(bad).has_value()) << bad;
+    EXPECT_TRUE(MetricSet{}.empty());
+}
+
 }  // namespace
 }  // namespace vkfuse

@@ -62,12 +62,6 @@ std::vector<Misuse> bad_configs() {
          ErrorKind::InvalidArgument, "needs 3-channel (RGB) frames"},
         {"unfused_two_frames", make(with(config(Method::Brovey, 8, 8, 1, 2), [](auto& c) { c.fuse = false; })),
          "plan", ErrorKind::InvalidArgument, "an unfused plan (fuse = false) scores 1 frame per sensor, got 2"},
-        {"background_without_metrics",
-         make(with(ok, [](auto& c) {
-             c.want_metrics = false;
-             c.background_diff = true;
-         })),
-         "plan", ErrorKind::InvalidArgument, "background_diff needs want_metrics"},
         {"beyond_32_bit_indexing", make(config(Method::Brovey, 8192, 8192, 3, 16, 64)), "plan",
          ErrorKind::InvalidArgument, "64 sensors x 16 frames of 8192x8192 exceed one plan's size limit"},
     };
@@ -84,7 +78,7 @@ TEST_F(VulkanApiErrors, BadConfigurationsAreRejectedBeforeAnyWork) {
 
 TEST_F(VulkanApiErrors, BadRunsAndReadsLeaveThePlanUsable) {
     PlanConfig cfg = config(Method::Brovey, 8, 8, 3, 2, 2);
-    cfg.background_diff = true;
+    cfg.metrics = MetricSet::all();
     Plan plan(ctx(), cfg);
     const Image frame(8, 8, 3), narrow(8, 7, 3);
     const std::vector<std::uint8_t> bytes(8 * 8 * 3);
@@ -123,15 +117,15 @@ TEST_F(VulkanApiErrors, ResultsThatWereNotAskedForAreErrors) {
     PlanConfig cfg = config(Method::Brovey, 4, 4, 1, 1);
     cfg.fuse = false;
     cfg.want_fused = false;
-    cfg.want_metrics = false;
+    cfg.metrics = {};
     Plan plan(ctx(), cfg);
     const Image frame(4, 4, 1);
     const FrameView view = FrameView::of(frame);
     plan.run(std::span(&view, 1));
     expect_error([&] { plan.fused(0); }, "plan", ErrorKind::InvalidArgument, "created without want_fused");
-    expect_error([&] { plan.metrics(0); }, "plan", ErrorKind::InvalidArgument, "created without want_metrics");
+    expect_error([&] { plan.metrics(0); }, "plan", ErrorKind::InvalidArgument, "created without metrics");
     expect_error([&] { plan.set_background(0, view); }, "plan", ErrorKind::InvalidArgument,
-                 "created without background_diff");
+                 "created without the background_diff metric");
 }
 
 }  // namespace

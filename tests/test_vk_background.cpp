@@ -81,7 +81,7 @@ TEST_F(VulkanBackground, EightBitPlanTakesFloatBackground) {
     PlanConfig cfg{FusionSpec{}, h, w, 3, 1, 1, PixelType::U8};
     cfg.fuse = false;
     cfg.want_fused = false;
-    cfg.background_diff = true;
+    cfg.metrics = MetricSet::all();
     Plan plan(ctx(), cfg);
     plan.set_background(0, FrameView::of(bg));
     plan.run(views_of(frames, h, w));

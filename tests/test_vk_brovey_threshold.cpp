@@ -81,7 +81,7 @@ TEST_F(VulkanBroveyThreshold, MeanBelowRatioAbove) {
     cfg.channels = 1;
     cfg.frames = 3;
     cfg.sensors = 2;
-    cfg.want_metrics = false;
+    cfg.metrics = {};
     Plan plan = run_plan(ctx(), cfg, frames);
     for (int s = 0; s < 2; ++s) {
         SCOPED_TRACE("sensor " + std::to_string(s));

@@ -44,7 +44,7 @@ Results run(Context& ctx, const FusionSpec& spec, const Shape& s) {
     cfg.frames = s.frames;
     cfg.sensors = s.sensors;
     cfg.input = s.input;
-    cfg.background_diff = true;
+    cfg.metrics = MetricSet::all();
     cfg.precision = s.precision;
     Plan plan(ctx, cfg);
     const std::vector<Image> floats = float_frames(s);

@@ -83,7 +83,7 @@ void check_case(Context& ctx, const Case& c, std::uint32_t seed) {
     cfg.channels = c.channels;
     cfg.frames = c.frames;
     cfg.sensors = c.sensors;
-    cfg.want_metrics = false;
+    cfg.metrics = {};
     std::vector<Image> f32;
     for (auto& f : frames) f32.push_back(convert<float>(f));
     Plan plan = run_plan(ctx, cfg, f32);
@@ -216,7 +216,7 @@ TEST_F(VulkanFusion, IdenticalFramesFuseToThemselves) {
     for (auto& spec : specs) {
         SCOPED_TRACE(std::string(to_string(spec.method)) + " " + std::string(to_string(spec.wavelet)));
         PlanConfig cfg{spec, 33, 47, 3, 3, 1};
-        cfg.want_metrics = false;
+        cfg.metrics = {};
         Plan plan = run_plan(ctx(), cfg, frames);
         EXPECT_LE(max_abs_diff(plan.fused(0), frame), kFusedTolerance);
     }
@@ -240,7 +240,7 @@ TEST_F(VulkanFusion, SymmetricModeRoundTripsAtEverySize) {
                     auto frame = random_image(h, w, 1, std::uint32_t(h * 100 + w));
                     std::vector<Image> frames(2, convert<float>(frame));
                     PlanConfig cfg{s, h, w, 1, 2, 1};
-                    cfg.want_metrics = false;
+                    cfg.metrics = {};
                     Plan plan = run_plan(ctx(), cfg, frames);
                     EXPECT_LE(max_abs_diff(plan.fused(0), frame), kFusedTolerance);
                 }
@@ -250,7 +250,7 @@ TEST_F(VulkanFusion, SymmetricModeRoundTripsAtEverySize) {
 TEST_F(VulkanFusion, RunsAreBitIdentical) {
     FusionSpec s;  // default: wavelet bior4.4, 3 levels
     PlanConfig cfg{s, 120, 160, 3, 3, 2};
-    cfg.want_metrics = true;
+    cfg.metrics = {Metric::Sharpness, Metric::Contrast};
     std::vector<Image> frames;
     for (int i = 0; i < 6; ++i) frames.push_back(convert<float>(structured_image(120, 160, 3, 90 + i)));
     std::vector<FrameView> views;
@@ -293,7 +293,7 @@ TEST_F(VulkanFusion, EightBitFramesUnpackLikeFiles) {
                 if (s.method == Method::Wavelet) s.levels = max_wavelet_levels(s.wavelet, h, w);
                 PlanConfig cfg{s, h, w, c, 2, 1};
                 cfg.input = PixelType::U8;
-                cfg.want_metrics = false;
+                cfg.metrics = {};
                 Plan plan(ctx(), cfg);
                 std::vector<FrameView> views;
                 for (auto& r : raw) views.push_back({r.data(), h, w, c, PixelType::U8});

@@ -15,10 +15,10 @@ TEST(KernelInterface, BoundVariantsDeclareTheirBuffersAndScalars) {
     const vk::KernelInterface pack = vk::reflect_kernel(vk::shader_spirv("pack"));
     EXPECT_EQ(pack.bindings, 4u);
     EXPECT_EQ(pack.push_bytes, 12u);
-    // metrics.comp: 7 buffers; 8 scalars.
+    // metrics.comp: 7 buffers; 10 scalars.
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16"));
     EXPECT_EQ(metrics.bindings, 7u);
-    EXPECT_EQ(metrics.push_bytes, 32u);
+    EXPECT_EQ(metrics.push_bytes, 40u);
 }
 
 TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
@@ -28,7 +28,7 @@ TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
     EXPECT_EQ(pack.push_bytes, 4u * 8u + 12u);
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16_addr"));
     EXPECT_EQ(metrics.bindings, 0u);
-    EXPECT_EQ(metrics.push_bytes, 7u * 8u + 32u);
+    EXPECT_EQ(metrics.push_bytes, 7u * 8u + 40u);
 }
 
 TEST(KernelInterface, SharedPushBlocksDeclareTheirBuffersToo) {

@@ -133,7 +133,7 @@ void check_fusion(Context& ctx, const FusionSpec& spec, const std::vector<Image>
     cfg.channels = frames[0].channels;
     cfg.frames = kK;
     cfg.sensors = S;
-    cfg.want_metrics = metrics;
+    cfg.metrics = metrics ? MetricSet{Metric::Sharpness, Metric::Contrast} : MetricSet{};
     Plan plan = run_plan(ctx, cfg, frames);
     for (int s = 0; s < S; ++s) {
         SCOPED_TRACE("sensor " + std::to_string(s));
@@ -221,7 +221,7 @@ Metrics gpu_metrics(Context& ctx, const Image& image, const Image* background) {
     cfg.channels = image.channels;
     cfg.frames = 1;
     cfg.want_fused = false;
-    cfg.background_diff = background != nullptr;
+    cfg.metrics = cfg.metrics.with(Metric::BackgroundDiff, background != nullptr);
     Plan plan(ctx, cfg);
     if (background) plan.set_background(0, FrameView::of(*background));
     const FrameView view = FrameView::of(image);

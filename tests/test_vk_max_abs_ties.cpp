@@ -63,7 +63,7 @@ void check_ties(Context& ctx, const FusionSpec& spec, const std::vector<ImageD>&
     cfg.channels = a.channels;
     cfg.frames = k;
     cfg.sensors = int(expected.size());
-    cfg.want_metrics = false;
+    cfg.metrics = {};
     std::vector<Image> f32;
     for (const ImageD& f : frames) f32.push_back(convert<float>(f));
     Plan plan = run_plan(ctx, cfg, f32);

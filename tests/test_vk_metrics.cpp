@@ -26,7 +26,7 @@ Metrics gpu_metrics(Context& ctx, const ImageD& img, const ImageD* bg) {
     PlanConfig cfg{FusionSpec{}, img.height, img.width, img.channels, 1, 1};
     cfg.fuse = false;
     cfg.want_fused = false;
-    cfg.background_diff = bg != nullptr;
+    cfg.metrics = cfg.metrics.with(Metric::BackgroundDiff, bg != nullptr);
     Plan plan(ctx, cfg);
     Image f = convert<float>(img);
     Image b;
@@ -98,6 +98,63 @@ TEST_F(VulkanMetrics, EverySensorOfABatchIsScoredOnItsOwn) {
         expect_close(plan.metrics(i).sharpness, ref.sharpness, "sharpness");
         expect_close(plan.metrics(i).contrast, ref.contrast, "contrast");
         EXPECT_LE(max_abs_diff(plan.fused(i), frames[std::size_t(i)]), 0.0);
+    }
+}
+
+// Every non-empty subset of the metrics, on a fusing plan of two sensors: the
+// metrics asked for are the bits the plan that computes all three gives (each
+// is summed on its own), the others NaN or absent, on the device and in the
+// reference alike.
+TEST_F(VulkanMetrics, APlanComputesOnlyTheMetricsAskedFor) {
+    const int S = 2, K = 2, h = 75, w = 96;
+    std::vector<Image> frames, backgrounds;
+    for (int i = 0; i < S * K; ++i) frames.push_back(convert<float>(structured_image(h, w, 3, 300 + i)));
+    for (int i = 0; i < S; ++i) backgrounds.push_back(convert<float>(random_image(h, w, 3, 400 + i)));
+    const auto run = [&](MetricSet which) {
+        PlanConfig cfg{FusionSpec{}, h, w, 3, K, S};
+        cfg.metrics = which;
+        Plan plan(ctx(), cfg);
+        if (which.has(Metric::BackgroundDiff))
+            for (int s = 0; s < S; ++s) plan.set_background(s, FrameView::of(backgrounds[std::size_t(s)]));
+        std::vector<FrameView> views;
+        for (const Image& f : frames) views.push_back(FrameView::of(f));
+        plan.run(views);
+        std::vector<Metrics> out;
+        for (int s = 0; s < S; ++s) out.push_back(plan.metrics(s));
+        return std::pair(out, plan.fused(0));
+    };
+    const auto [all, fused] = run(MetricSet::all());
+    const Metrics ref_all = metrics_reference(convert<double>(fused), nullptr);
+    for (unsigned bits = 1; bits < 8; ++bits) {
+        MetricSet which;
+        for (Metric m : kAllMetrics) which = which.with(m, (bits >> unsigned(m)) & 1u);
+        SCOPED_TRACE(which.to_string());
+        const auto [got, image] = run(which);
+        EXPECT_EQ(max_abs_diff(image, convert<double>(fused)), 0.0);
+        for (int s = 0; s < S; ++s) {
+            const Metrics& g = got[std::size_t(s)];
+            const Metrics& a = all[std::size_t(s)];
+            if (which.has(Metric::Sharpness)) {
+                EXPECT_EQ(g.sharpness, a.sharpness);
+            } else {
+                EXPECT_TRUE(std::isnan(g.sharpness));
+            }
+            if (which.has(Metric::Contrast)) {
+                EXPECT_EQ(g.contrast, a.contrast);
+            } else {
+                EXPECT_TRUE(std::isnan(g.contrast));
+            }
+            EXPECT_EQ(g.background_diff, which.has(Metric::BackgroundDiff) ? a.background_diff : std::nullopt);
+        }
+        const Metrics ref = metrics_reference(convert<double>(fused), nullptr, which);
+        EXPECT_EQ(std::isnan(ref.sharpness), !which.has(Metric::Sharpness));
+        EXPECT_EQ(std::isnan(ref.contrast), !which.has(Metric::Contrast));
+        if (which.has(Metric::Sharpness)) {
+            EXPECT_EQ(ref.sharpness, ref_all.sharpness);
+        }
+        if (which.has(Metric::Contrast)) {
+            EXPECT_EQ(ref.contrast, ref_all.contrast);
+        }
     }
 }
 

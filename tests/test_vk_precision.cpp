@@ -146,7 +146,7 @@ TEST_F(VulkanPrecision, OneFilterPassWithinAFewUlps) {
         cfg.width = w;
         cfg.channels = 1;
         cfg.frames = 2;
-        cfg.want_metrics = false;
+        cfg.metrics = {};
         Plan plan = run_plan(*context, cfg, {f32, f32});
         const ImageD ref = fuse_reference(frames, spec);
         ASSERT_LE(max_abs_diff(ref, frame), 1e-12);  // the reference: the identity
@@ -188,7 +188,7 @@ TEST_F(VulkanPrecision, FeedbackDrift) {
         cfg.width = w;
         cfg.channels = 1;
         cfg.frames = 2;
-        cfg.want_metrics = false;
+        cfg.metrics = {};
         Plan plan(*context, cfg);
         Image current = convert<float>(frame);
         for (int pass = 0; pass < 20; ++pass) {

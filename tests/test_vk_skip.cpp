@@ -76,7 +76,7 @@ PlanConfig skip_config(const Scene& s, int sensors, FusionSpec spec, SkipPolicy 
     cfg.frames = s.k;
     cfg.sensors = sensors;
     cfg.input = PixelType::U8;
-    cfg.background_diff = true;
+    cfg.metrics = MetricSet::all();
     cfg.skip = {policy, threshold};
     return cfg;
 }

@@ -62,7 +62,7 @@ Image fuse_on_vulkan(Context& context, const FusionSpec& spec, const std::vector
     config.sensors = 1;
     config.input = PixelType::F32;
     config.want_fused = true;
-    config.want_metrics = false;
+    config.metrics = {};
     Plan plan(context, config);
     std::vector<FrameView> views;
     for (const Input& in : inputs) views.push_back(FrameView::of(in.image));

@@ -55,8 +55,7 @@ PlanConfig metrics_plan(const Image& shape, bool background_diff) {
     config.sensors = 1;
     config.input = PixelType::F32;
     config.want_fused = false;
-    config.want_metrics = true;
-    config.background_diff = background_diff;
+    config.metrics = MetricSet::all().with(Metric::BackgroundDiff, background_diff);
     return config;
 }
 

@@ -42,6 +42,7 @@ constexpr OptionSpec kOptions[] = {
     {"--background-frames", "", "N", "no-contact frames averaged per setting for the background (default 20; 0: none)"},
     {"--skip", "", "MODE", "off; idle: a sensor whose frames stay within its background noise is not fused; static: also one whose frames match its last fused cycle (default static)"},
     {"--skip-threshold", "", "K", "a tile changed when a sample lies over K x the tile's noise from the background (default 8)"},
+    {"--metrics", "", "LIST", "the metrics computed and written, comma-separated: sharpness, contrast, background_diff (default all three; background_diff needs a background)"},
     {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},
     {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},
     {"--replay", "", "DIR", "play a recorded dataset instead of simulating (vkfuse sim, vkfuse run --record)"},
@@ -143,6 +144,7 @@ RigConfig rig_config(Session& s) {
     cfg.cycle_timeout_s = o.timeout_s;
     cfg.want_fused = o.out.has_value();
     cfg.skip = o.skip;
+    cfg.metrics = o.metrics;
     cfg.watch_when_idle = !o.record;  // a dataset holds every setting of every cycle
     // The recorder is made once the rig has accepted the configuration (no
     // directory for a run that cannot start); the callback finds it then.

@@ -69,9 +69,21 @@ int recorded_background_frames(const Dataset& d, const IlluminationSequence& seq
     return int(fewest);
 }
 
+void metric_options(const Args& args, RunOptions& o) {
+    const bool background = o.background_frames > 0;
+    o.metrics = MetricSet::all().with(Metric::BackgroundDiff, background);
+    const auto v = args.value("--metrics");
+    if (!v) return;
+    const std::optional<MetricSet> asked = MetricSet::parse(*v);
+    if (!asked) fail("--metrics " + *v + ": expected a comma-separated list of " + MetricSet::all().to_string());
+    if (asked->has(Metric::BackgroundDiff) && !background)
+        fail("--metrics " + *v + ": background_diff needs a background (--background-frames of at least 1)");
+    o.metrics = *asked;
+}
+
 }  // namespace
 
-void skip_options(const Args& args, RunOptions& o) {
+void background_options(const Args& args, RunOptions& o) {
     o.skip.policy = o.background_frames >= 2 ? SkipPolicy::Static : SkipPolicy::Off;
     if (auto v = args.value("--skip")) {
         const std::optional<SkipPolicy> p = parse_skip_policy(*v);
@@ -84,6 +96,7 @@ void skip_options(const Args& args, RunOptions& o) {
         o.skip.threshold = parse_positive_number("--skip-threshold", *v);
         if (o.skip.policy == SkipPolicy::Off) fail("--skip-threshold " + *v + ": skipping is off");
     }
+    metric_options(args, o);
 }
 
 RunOptions parse_run_options(const Args& args) {
@@ -114,7 +127,7 @@ RunOptions parse_run_options(const Args& args) {
     o.out = args.value("--out");
     o.background_frames = kDefaultBackgroundFrames;
     if (auto v = args.value("--background-frames")) o.background_frames = parse_count("--background-frames", *v);
-    skip_options(args, o);
+    background_options(args, o);
     if (auto v = args.value("--pressing")) {
         o.pressing = parse_count("--pressing", *v);
         if (*o.pressing > o.sensors)
@@ -136,7 +149,7 @@ void adopt_recording(RunOptions& o, const Args& args, const Dataset& d) {
     }
     o.sensors = int(d.sensors.size());
     o.background_frames = d.run ? d.run->background_frames : recorded_background_frames(d, o.sequence);
-    skip_options(args, o);  // the recording's background decides whether skipping can be on
+    background_options(args, o);  // the recording's background decides whether skipping can be on
 }
 
 }  // namespace vkfuse::cli

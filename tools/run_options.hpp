@@ -6,6 +6,7 @@
 #include "args.hpp"
 #include "backend.hpp"
 #include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/metrics.hpp"
 #include "vkfuse/core/skip.hpp"
 #include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/sensor/illumination.hpp"
@@ -38,6 +39,8 @@ struct RunOptions {
     // Skipping: static unless --skip says otherwise or there is no
     // background to compare with (--background-frames 0 or 1).
     SkipConfig skip;
+    // --metrics: all three unless told; background_diff only with a background.
+    MetricSet metrics = MetricSet::all();
     std::optional<int> pressing;  // simulated DIGITs: how many press the object (the first N), default all
     double timeout_s = kLiveTimeoutSeconds;
 };
@@ -49,8 +52,9 @@ inline constexpr int kMaxSimulatedSensors = 64;
 // Parses and checks every option (names, ranges, the sequence against the
 // DIGIT's LEDs, the object against the simulator's). Throws Error naming the option.
 RunOptions parse_run_options(const Args& args);
-// --skip and --skip-threshold into o (after o.background_frames is known).
-void skip_options(const Args& args, RunOptions& o);
+// What depends on the background (o.background_frames, known by now):
+// --skip, --skip-threshold and --metrics into o.
+void background_options(const Args& args, RunOptions& o);
 
 // With --replay: the recorded sequence, fusion and background count wherever
 // the command line did not set them, and the recorded object when it named

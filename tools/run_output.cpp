@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -89,9 +90,14 @@ std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const s
     std::string frames;
     for (const Frame& f : s.frames) frames += (frames.empty() ? "" : ", ") + std::to_string(f.index);
     line += ", \"object\": " + json_string(object) + ", \"timestamp\": " + json_number(s.frames.back().timestamp) +
-            ", \"frames\": [" + frames + "], \"sharpness\": " + json_number(s.metrics.sharpness) +
-            ", \"contrast\": " + json_number(s.metrics.contrast);
-    if (s.metrics.background_diff) line += ", \"background_diff\": " + json_number(*s.metrics.background_diff);
+            ", \"frames\": [" + frames + "]";
+    // Only the metrics the run asked for (--metrics): the others read NaN.
+    const auto metric = [&](Metric m, double v) {
+        if (!std::isnan(v)) line += ", " + json_string(std::string(to_string(m))) + ": " + json_number(v);
+    };
+    metric(Metric::Sharpness, s.metrics.sharpness);
+    metric(Metric::Contrast, s.metrics.contrast);
+    if (s.metrics.background_diff) metric(Metric::BackgroundDiff, *s.metrics.background_diff);
     line += std::string(", \"idle\": ") + (s.skip.idle ? "true" : "false") +
             ", \"fused_fraction\": " + json_number(s.skip.fused_fraction);
     if (skipping) {

@@ -77,15 +77,15 @@ double background_diff(const ImageD& img, const ImageD& bg) {
 
 }  // namespace
 
-Metrics metrics_reference(const ImageD& img, const ImageD* background) {
+Metrics metrics_reference(const ImageD& img, const ImageD* background, MetricSet which) {
     if (img.height < 1 || img.width < 1 || (img.channels != 1 && img.channels != 3) ||
         img.data.size() != img.pixels() * img.channels)
         throw Error(ErrorKind::InvalidArgument, "image: shape " + shape_text(img) + " is not H x W x {1, 3}");
     core::require_finite(img, "image");
     Metrics m;
-    m.sharpness = sharpness(img);
-    m.contrast = contrast(img);
-    if (background != nullptr) m.background_diff = background_diff(img, *background);
+    m.sharpness = which.has(Metric::Sharpness) ? sharpness(img) : std::nan("");
+    m.contrast = which.has(Metric::Contrast) ? contrast(img) : std::nan("");
+    if (background != nullptr && which.has(Metric::BackgroundDiff)) m.background_diff = background_diff(img, *background);
     return m;
 }
 

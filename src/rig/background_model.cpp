@@ -23,7 +23,7 @@ BackgroundModel::BackgroundModel(Context& context, int height, int width, int ch
     cfg.sensors = 1;
     cfg.input = input;
     cfg.want_fused = true;
-    cfg.want_metrics = false;
+    cfg.metrics = {};
     impl_ = std::make_unique<Impl>(Impl{Plan::Impl::make(context, cfg, vk::PlanKind::BackgroundMean)});
 }
 

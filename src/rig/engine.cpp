@@ -14,7 +14,9 @@ namespace {
 class GpuEngine : public Engine {
 public:
     GpuEngine(Context& context, const PlanConfig& config) : plan_(context, config) {}
-    void set_background(int sensor, const Image& bg) override { plan_.set_background(sensor, FrameView::of(bg)); }
+    void set_background(int sensor, const Image& bg) override {
+        if (plan_.config().metrics.has(Metric::BackgroundDiff)) plan_.set_background(sensor, FrameView::of(bg));
+    }
     void set_skip_reference(int sensor, const SkipReference& r) override { plan_.set_skip_reference(sensor, r); }
     SkipOutcome skip_outcome(int sensor) override { return plan_.skip_outcome(sensor); }
     void run(std::span<const FrameView> frames) override { plan_.run(frames); }
@@ -108,13 +110,15 @@ private:
             return true;
         }
         if (!o.idle) return false;
-        if (cfg_.want_metrics && !sk.idle_metrics) {
-            const bool with_bg = cfg_.background_diff && !backgrounds_[s].data.empty();
-            sk.idle_metrics = metrics_reference(convert<double>(sk.fused), with_bg ? &backgrounds_[s] : nullptr);
-        }
-        if (cfg_.want_metrics) metrics_[s] = *sk.idle_metrics;
+        if (!cfg_.metrics.empty() && !sk.idle_metrics) sk.idle_metrics = metrics_of(s, convert<double>(sk.fused));
+        if (!cfg_.metrics.empty()) metrics_[s] = *sk.idle_metrics;
         fused_[s] = sk.fused;
         return true;
+    }
+
+    Metrics metrics_of(std::size_t s, const ImageD& fused) const {
+        const bool with_bg = cfg_.metrics.has(Metric::BackgroundDiff) && !backgrounds_[s].data.empty();
+        return metrics_reference(fused, with_bg ? &backgrounds_[s] : nullptr, cfg_.metrics);
     }
 
     bool still(std::size_t s, std::span<const FrameView> frames) const {
@@ -134,8 +138,7 @@ private:
         std::vector<ImageD> images;
         for (const FrameView& v : frames) images.push_back(to_double(v));
         const ImageD fused = fuse_reference(images, cfg_.fusion);
-        const bool with_bg = cfg_.background_diff && !backgrounds_[s].data.empty();
-        if (cfg_.want_metrics) metrics_[s] = metrics_reference(fused, with_bg ? &backgrounds_[s] : nullptr);
+        if (!cfg_.metrics.empty()) metrics_[s] = metrics_of(s, fused);
         fused_[s] = convert<float>(fused);
         if (cfg_.skip.policy != SkipPolicy::Static) return;
         SensorSkip& sk = skip_[s];

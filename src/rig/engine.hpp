@@ -15,6 +15,8 @@ namespace vkfuse::rig {
 class Engine {
 public:
     virtual ~Engine() = default;
+    // The background background_diff compares with (kept only when the
+    // engine computes that metric).
     virtual void set_background(int sensor, const Image& background) = 0;
     virtual void set_skip_reference(int sensor, const SkipReference& reference) = 0;
     // frames sensor-major, as Plan::run.
@@ -26,7 +28,7 @@ public:
 };
 
 // A Plan on context, or the CPU reference path when context is null (config
-// as for a Plan; want_metrics, background_diff and skip are honoured the same
+// as for a Plan; metrics and skip are honoured the same
 // way: the CPU path detects change with core/skip.hpp's reference, the same
 // statistic in double precision).
 std::unique_ptr<Engine> make_engine(Context* context, const PlanConfig& config);

@@ -127,8 +127,9 @@ PlanConfig Rig::Impl::plan_config(PixelType input, bool metrics) const {
     p.sensors = int(sensors.size());
     p.input = input;
     p.want_fused = cfg->want_fused || !metrics;
-    p.want_metrics = metrics;
-    p.background_diff = metrics && cfg->background_frames > 0;
+    p.metrics = metrics ? cfg->metrics.with(Metric::BackgroundDiff,
+                                            cfg->metrics.has(Metric::BackgroundDiff) && cfg->background_frames > 0)
+                        : MetricSet{};
     if (metrics) p.skip = cfg->skip;  // the background means themselves are always fused
     return p;
 }

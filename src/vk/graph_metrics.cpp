@@ -14,7 +14,7 @@ std::uint32_t metric_groups(const PlanConfig& cfg) {
     return groups(items, kGroupSize);
 }
 
-bool metrics_write_image(const PlanConfig& cfg) { return cfg.want_metrics && cfg.width % 4 == 0; }
+bool metrics_write_image(const PlanConfig& cfg) { return !cfg.metrics.empty() && cfg.width % 4 == 0; }
 
 void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
                     std::optional<DeviceSpan> image) {
@@ -29,6 +29,8 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
                        .u32(std::uint32_t(g.cfg.channels))
                        .u32(wgs)
                        .u32(background ? 1 : 0)
+                       .u32(g.cfg.metrics.has(Metric::Sharpness))
+                       .u32(g.cfg.metrics.has(Metric::Contrast))
                        .u32(g.cfg.width % 4 == 0)
                        .u32(std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height))
                        .u32(image.has_value()),

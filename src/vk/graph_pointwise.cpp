@@ -22,7 +22,7 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
                        .u32(kernel)
                        .u32(g.brovey_thresholds ? 1 : 0)
                        .u32(quads)
-                       .u32(g.cfg.want_metrics)
+                       .u32(!g.cfg.metrics.empty())
                        .u32(image.has_value()),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
     g.rec.mark(stage);

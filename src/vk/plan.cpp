@@ -25,8 +25,6 @@ void validate_config(const PlanConfig& c, vk::PlanKind kind) {
                                                         std::to_string(c.frames));
     }
     if (c.sensors < 1) throw Error(ErrorKind::InvalidArgument, "plan: sensors must be >= 1");
-    if (c.background_diff && !c.want_metrics)
-        throw Error(ErrorKind::InvalidArgument, "plan: background_diff needs want_metrics");
     if (c.skip.policy != SkipPolicy::Off) {
         if (kind != vk::PlanKind::Fuse || c.input != PixelType::U8)
             throw Error(ErrorKind::InvalidArgument, "plan: skip " + std::string(to_string(c.skip.policy)) +
@@ -66,7 +64,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     const std::size_t plane_floats = std::size_t(cfg.height) * cfg.width;
     const std::size_t sensor_floats = plane_floats * cfg.channels;
     upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
-    if (cfg.background_diff) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
+    if (cfg.metrics.has(Metric::BackgroundDiff)) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
     const std::size_t S = std::size_t(cfg.sensors);
     if (cfg.input == PixelType::F32 && brovey()) {
         thresholds = vk::Buffer(ctx, S * 4, vk::MemoryUse::Upload);
@@ -74,7 +72,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     }
     exponent.assign(S, 0);
     next_exponent.assign(S, 0);
-    if (cfg.background_diff && (cfg.input == PixelType::F32 || cfg.skip.policy != SkipPolicy::Off)) {
+    if (cfg.metrics.has(Metric::BackgroundDiff) && (cfg.input == PixelType::F32 || cfg.skip.policy != SkipPolicy::Off)) {
         background_host.resize(sensor_floats * S);
         background_max.assign(S, 0);
         background_exponent.assign(S, std::nullopt);
@@ -83,7 +81,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     // Partials start on a boundary any device accepts as a binding offset.
     partials_offset = (fused_bytes + 255) / 256 * 256;
     const std::size_t partial_bytes =
-        cfg.want_metrics ? S * vk::metric_groups(cfg) * vk::kMetricPartialFloats * sizeof(float) : 16;
+        !cfg.metrics.empty() ? S * vk::metric_groups(cfg) * vk::kMetricPartialFloats * sizeof(float) : 16;
     readback = vk::Buffer(ctx, partials_offset + partial_bytes, vk::MemoryUse::Readback);
     if (cfg.profile && !ctx.timestamps)
         throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
@@ -136,8 +134,8 @@ void Plan::Impl::record() {
         }
     }
     const bool packs = cfg.want_fused && !pointwise && vk::metrics_write_image(cfg);
-    if (cfg.want_metrics)
-        record_metrics(g, fused_planes, cfg.background_diff ? background.address() : 0,
+    if (!cfg.metrics.empty())
+        record_metrics(g, fused_planes, cfg.metrics.has(Metric::BackgroundDiff) ? background.address() : 0,
                        readback.span().sub(partials_offset), packs ? std::optional(image) : std::nullopt);
     rec.finish();
     stage_names = rec.stage_names();
@@ -215,7 +213,8 @@ const PlanConfig& Plan::config() const { return impl_->cfg; }
 
 void Plan::set_background(int sensor, const FrameView& bg) {
     auto& im = *impl_;
-    if (!im.cfg.background_diff) throw Error(ErrorKind::InvalidArgument, "plan: created without background_diff");
+    if (!im.cfg.metrics.has(Metric::BackgroundDiff))
+        throw Error(ErrorKind::InvalidArgument, "plan: created without the background_diff metric");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "background: sensor " + std::to_string(sensor) + " out of range");
     const std::string name = "background of sensor " + std::to_string(sensor);
@@ -338,7 +337,7 @@ void Plan::run(std::span<const FrameView> frames) {
                                                     std::to_string(c.frames) + " = " + std::to_string(expected));
     for (std::size_t i = 0; i < frames.size(); ++i)
         check_view(frames[i], c, "frame " + std::to_string(i % c.frames) + " of sensor " + std::to_string(i / c.frames));
-    if (c.background_diff)
+    if (c.metrics.has(Metric::BackgroundDiff))
         for (int s = 0; s < c.sensors; ++s)
             if (!im.background_set[std::size_t(s)])
                 throw Error(ErrorKind::InvalidArgument, "plan run: no background set for sensor " + std::to_string(s));
@@ -361,7 +360,7 @@ void Plan::run(std::span<const FrameView> frames) {
         if (im.skip->statics())
             for (int s = 0; s < c.sensors; ++s)
                 if (im.skip->result_pending(s))
-                    im.skip->keep_result(s, c.want_fused ? &fused(s) : nullptr, c.want_metrics ? metrics(s) : Metrics{});
+                    im.skip->keep_result(s, c.want_fused ? &fused(s) : nullptr, !c.metrics.empty() ? metrics(s) : Metrics{});
         const std::vector<int> fused_sensors = im.skip->detect();
         im.skip->keep_frames(frames, fused_sensors);
         im.compact(frames, fused_sensors);
@@ -405,14 +404,14 @@ const Image& Plan::fused(int sensor) const {
 
 Metrics Plan::metrics(int sensor) const {
     auto& im = *impl_;
-    if (!im.cfg.want_metrics) throw Error(ErrorKind::InvalidArgument, "plan: created without want_metrics");
+    if (im.cfg.metrics.empty()) throw Error(ErrorKind::InvalidArgument, "plan: created without metrics");
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: metrics() before run()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
     if (im.skipped(sensor)) {
         const std::size_t n = std::size_t(im.cfg.height) * im.cfg.width * im.cfg.channels;
         return im.skip->skipped_metrics(
-            sensor, im.cfg.background_diff ? im.background_host.data() + std::size_t(sensor) * n : nullptr);
+            sensor, im.cfg.metrics.has(Metric::BackgroundDiff) ? im.background_host.data() + std::size_t(sensor) * n : nullptr);
     }
     const std::size_t groups = vk::metric_groups(im.cfg), n_floats = groups * vk::kMetricPartialFloats;
     const float* partials = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
@@ -438,9 +437,10 @@ Metrics Plan::metrics(int sensor) const {
     const double n = double(im.cfg.height) * im.cfg.width;
     const int e = im.exponent[std::size_t(sensor)];  // every metric scales with the frames
     Metrics m;
-    m.sharpness = std::ldexp(sharpness / n, e);
-    m.contrast = std::ldexp(std::sqrt(std::max(0.0, m2) / n), e);
-    if (im.cfg.background_diff) m.background_diff = std::ldexp(background_diff / (n * im.cfg.channels), e);
+    const MetricSet& which = im.cfg.metrics;
+    m.sharpness = which.has(Metric::Sharpness) ? std::ldexp(sharpness / n, e) : std::nan("");
+    m.contrast = which.has(Metric::Contrast) ? std::ldexp(std::sqrt(std::max(0.0, m2) / n), e) : std::nan("");
+    if (which.has(Metric::BackgroundDiff)) m.background_diff = std::ldexp(background_diff / (n * im.cfg.channels), e);
     return m;
 }
 

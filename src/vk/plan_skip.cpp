@@ -156,14 +156,14 @@ Metrics SkipState::skipped_metrics(int sensor, const float* planar_background) {
     if (cached) return *cached;
     const ImageD image = convert<double>(fused_.at(std::size_t(sensor)));
     if (!planar_background) {
-        cached = metrics_reference(image);
+        cached = metrics_reference(image, nullptr, cfg_.metrics);
         return *cached;
     }
     ImageD background(image.height, image.width, image.channels);
     const std::size_t pixels = image.pixels(), C = std::size_t(image.channels);
     for (std::size_t p = 0; p < pixels; ++p)
         for (std::size_t c = 0; c < C; ++c) background.data[p * C + c] = planar_background[c * pixels + p];
-    cached = metrics_reference(image, &background);
+    cached = metrics_reference(image, &background, cfg_.metrics);
     return *cached;
 }
 
@@ -183,7 +183,7 @@ void Plan::Impl::compact(std::span<const FrameView> frames, const std::vector<in
         if (s != j)
             for (std::size_t k = 0; k < K; ++k)
                 std::memcpy(upload_bytes + (j * K + k) * n, frames[s * K + k].data, n);
-        if (!cfg.background_diff || background_in_slot[j] == int(s)) continue;
+        if (!cfg.metrics.has(Metric::BackgroundDiff) || background_in_slot[j] == int(s)) continue;
         std::memcpy(static_cast<float*>(background.mapped()) + j * n, background_host.data() + s * n, n * sizeof(float));
         background_in_slot[j] = int(s);
     }

@@ -40,7 +40,7 @@ GpuCycle gpu_cycle(Context& ctx, const FusionSpec& spec, const std::vector<Image
     cfg.channels = first.channels;
     cfg.frames = frames_per_sensor;
     cfg.sensors = int(frames.size()) / frames_per_sensor;
-    cfg.want_metrics = want_metrics;
+    cfg.metrics = want_metrics ? MetricSet{Metric::Sharpness, Metric::Contrast} : MetricSet{};
     Plan plan(ctx, cfg);
     std::vector<FrameView> views;
     for (const Image& f : frames) views.push_back(FrameView::of(f));
@@ -61,7 +61,7 @@ Metrics gpu_metrics(Context& ctx, const Image& image, const Image* background) {
     cfg.channels = image.channels;
     cfg.frames = 1;
     cfg.want_fused = false;
-    cfg.background_diff = background != nullptr;
+    cfg.metrics = cfg.metrics.with(Metric::BackgroundDiff, background != nullptr);
     Plan plan(ctx, cfg);
     if (background) plan.set_background(0, FrameView::of(*background));
     FrameView view = FrameView::of(image);

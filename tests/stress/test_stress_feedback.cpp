@@ -74,7 +74,7 @@ protected:
             if (spec.method == Method::Wavelet) what += ", " + std::string(to_string(context->filter_arithmetic()));
             SCOPED_TRACE(what);
             PlanConfig cfg{spec, kHeight, kWidth, 1, K, 1};
-            cfg.want_metrics = false;
+            cfg.metrics = {};
             Plan plan(*context, cfg);
             Image current = first;
             double drift_at_10 = 0;

@@ -13,8 +13,10 @@ namespace vkfuse {
 // Fuses K frames of one shape. Validates first (see validate()); throws Error.
 ImageD fuse_reference(std::span<const ImageD> frames, const FusionSpec& spec);
 
-// Sharpness and contrast of img; background difference when background is given
-// (it must have img's shape, else Error(Shape)).
-Metrics metrics_reference(const ImageD& img, const ImageD* background = nullptr);
+// The metrics of img that `which` names: background difference only when a
+// background is given (it must have img's shape, else Error(Shape)); the
+// others read NaN (Metrics).
+Metrics metrics_reference(const ImageD& img, const ImageD* background = nullptr,
+                          MetricSet which = MetricSet::all());
 
 }  // namespace vkfuse

@@ -43,6 +43,9 @@ struct RigConfig {
     double cycle_timeout_s = 5.0;     // wall-clock time a cycle waits for a sensor
     double startup_timeout_s = 60.0;  // wall-clock time for calibration and background
     bool want_fused = true;           // read fused images back (else metrics only)
+    // The metrics of each cycle (PlanConfig::metrics); background_diff only
+    // when there is a background (background_frames > 0).
+    MetricSet metrics = MetricSet::all();
     // Skipping idle sensors (PlanConfig::skip): each sensor's cycles are
     // compared with its background frames' mean and noise, so it needs
     // background_frames >= 2.

@@ -38,8 +38,9 @@ struct PlanConfig {
     int sensors = 1;        // S: sensors served by one submit
     PixelType input = PixelType::F32;
     bool want_fused = true;     // read back the fused image of every sensor
-    bool want_metrics = true;   // compute sharpness and contrast per sensor
-    bool background_diff = false;  // also the difference with each sensor's background
+    // The metrics computed per sensor (none: no metric pass). BackgroundDiff
+    // needs each sensor's background (set_background) before run().
+    MetricSet metrics = {Metric::Sharpness, Metric::Contrast};
     bool profile = false;       // per-kernel GPU timestamps (Plan::profile)
     Precision precision = Precision::Fp32;
     // false: nothing is fused; each sensor's one frame (frames = 1) is read
@@ -77,7 +78,7 @@ public:
 
     // Background frame of one sensor (shape height x width x channels, U8 or
     // F32 whatever config().input is: a background model is a float mean).
-    // Needed before run() when background_diff is set. Throws Error(Numeric)
+    // Needed before run() when metrics has BackgroundDiff. Throws Error(Numeric)
     // for NaN or Inf, and in a U8 plan for one whose largest magnitude is
     // below 2^-64 (8-bit frames are never scaled, see run()).
     void set_background(int sensor, const FrameView& background);
@@ -102,7 +103,7 @@ public:
     // beyond float32's range (the reference cannot store it either) or the
     // device computed a non-finite value: never Inf, NaN or a wrong number.
     const Image& fused(int sensor) const;  // requires want_fused
-    Metrics metrics(int sensor) const;     // requires want_metrics
+    Metrics metrics(int sensor) const;     // requires metrics not empty
     std::vector<KernelTime> profile() const;  // requires profile
     SkipOutcome skip_outcome(int sensor) const;  // idle false, fractions 1 when skip is off
     // Fusion command buffers submitted so far: one per run(), whatever the
