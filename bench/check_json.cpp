@@ -68,13 +68,18 @@ void check_scenes(const Value& doc) {
     for (std::size_t i = 0; i < doc.array().size(); ++i) {
         const Value& row = doc.array()[i];
         for (const char* key : {"scene", "skip", "threshold", "contact_fraction", "fused_fraction", "median_ms",
-                                "full_median_ms", "time_fraction", "max_abs_err_contact", "max_abs_err_outside"})
+                                "full_median_ms", "time_fraction", "max_abs_err_contact", "max_abs_err_outside",
+                                "tiles_work_fraction"})
             if (!row.find(key)) throw std::runtime_error("row " + std::to_string(i) + " lacks \"" + key + "\"");
+        const double tiles = row.find("tiles_work_fraction")->number();
+        if (!(tiles >= 0 && tiles <= 1))
+            throw std::runtime_error("row " + std::to_string(i) + ": tiles_work_fraction outside [0, 1]");
         if (row.find("max_abs_err_contact")->number() != 0)
             throw std::runtime_error("row " + std::to_string(i) + ": a fused cycle differs from full fusion");
         if (row.find("scene")->string() == "none" && row.find("skip")->string() != "off" &&
             row.find("threshold")->number() == vkfuse::SkipConfig{}.threshold) {
             if (row.find("fused_fraction")->number() != 0) throw std::runtime_error("no contact, yet cycles were fused");
+            if (tiles != 0) throw std::runtime_error("no contact, yet the tile-sparse model does work");
             if (!(row.find("time_fraction")->number() < 1)) throw std::runtime_error("idle cycles cost full fusion");
             none_idle = true;
         }
