@@ -20,6 +20,7 @@
 // sensor: cameras under switched LEDs, recorded datasets, the simulated DIGIT
 #include "vkfuse/sensor/clock.hpp"
 #include "vkfuse/sensor/dataset.hpp"
+#include "vkfuse/sensor/digit.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sensor.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
