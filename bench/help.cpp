@@ -76,16 +76,17 @@ Measurement:
                     contact; small: a ball pressed 0.1 mm, about 5% of the tiles;
                     ball: 0.3 mm; coin; slide: the ball sliding), 24 cycles each at
                     QVGA, K=3 (15,15,15+0,15,0+15,0,0), wavelet bior4.4 L3, run
-                    with skip off, idle and static at thresholds 4, 8 and 16, round
-                    robin;
+                    with skip off, idle, static and tiles at thresholds 4, 8 and 16,
+                    round robin;
                     a row per scene and setting: scene, skip, threshold,
                     contact_fraction (tiles changed at the default threshold),
                     fused_fraction, median_ms, full_median_ms (skip off, same
-                    scene), time_fraction, max_abs_err_contact (fused cycles
-                    against full fusion), max_abs_err_outside (skipped cycles,
-                    idle or reused, against full fusion). --json writes the rows, --plot time
-                    against error per scene; --runs N: N cycles, rounded up to
-                    whole passes over the 24
+                    scene), time_fraction, max_abs_err_contact (what was fused,
+                    against full fusion), max_abs_err_outside (the rest: skipped
+                    cycles, idle or reused, and outside a tiles cycle's fused
+                    region), tiles_work_fraction (the tile-sparse work model).
+                    --json writes the rows, --plot time against error per scene;
+                    --runs N: N cycles, rounded up to whole passes over the 24
 
 How it measures:
   A cycle is what a sensor loop does: Plan::run on all S*K frames (upload,

@@ -92,7 +92,7 @@ struct Outcome {
     std::vector<double> ms;
     double fused_fraction = 0, changed_fraction = 0;
     std::vector<Image> fused;  // per cycle, from the first pass
-    std::vector<bool> idle;  // per cycle: not fused (idle or reused)
+    std::vector<SkipRegion> regions;  // per cycle: what was fused (empty: idle or reused)
     double median_ms() {
         std::sort(ms.begin(), ms.end());
         return ms[ms.size() / 2];
@@ -135,7 +135,7 @@ std::vector<Outcome> run_plans(Context& ctx, const SceneData& d, const std::vect
                 if (r > 0) continue;
                 out[p].fused.push_back(fused);
                 const SkipOutcome o = plans[p].skip_outcome(0);
-                out[p].idle.push_back(o.idle || o.reused);
+                out[p].regions.push_back(o.fused_region);
                 out[p].fused_fraction += o.fused_fraction / double(d.cycles.size());
                 out[p].changed_fraction += o.changed_fraction / double(d.cycles.size());
             }
@@ -143,35 +143,34 @@ std::vector<Outcome> run_plans(Context& ctx, const SceneData& d, const std::vect
     return out;
 }
 
-// The work a tile-sparse fusion would do on one cycle, as a share of full
-// fusion's transform work (core/sparse_wavelet.hpp): the rectangle covering
-// the tiles that changed at the default threshold, grown by the wavelet's
-// reach. 0 for a cycle with no changed tile.
+// The transform work `--skip tiles` does on one cycle, as a share of full
+// fusion's (core/sparse_wavelet.hpp's model): the changed tiles' rectangle
+// grown by the wavelet's reach, 1 where it fuses whole, 0 with no changed tile.
 double tiles_work(const SceneData& d, const Frames& cycle) {
     const Image& first = d.reference.mean.front();
-    const int H = first.height, W = first.width, across = (W + kSkipTile - 1) / kSkipTile;
+    const int H = first.height, W = first.width;
     std::vector<FrameView> views;
     for (const auto& f : cycle) views.push_back({f.data(), H, W, 3, PixelType::U8});
-    const std::vector<double> scores = change_scores_reference(views, d.reference);
-    std::vector<char> rows(std::size_t(H), 0), cols(std::size_t(W), 0);
-    bool any = false;
-    for (std::size_t t = 0; t < scores.size(); ++t) {
-        if (scores[t] <= SkipConfig{}.threshold) continue;
-        any = true;
-        const int ty = int(t) / across, tx = int(t) % across;
-        for (int y = ty * kSkipTile; y < std::min(H, (ty + 1) * kSkipTile); ++y) rows[std::size_t(y)] = 1;
-        for (int x = tx * kSkipTile; x < std::min(W, (tx + 1) * kSkipTile); ++x) cols[std::size_t(x)] = 1;
-    }
-    if (!any) return 0;
-    const FusionSpec spec;
-    const core::SparseWaveletPlan plan = core::plan_sparse_wavelet(spec, H, W, {core::cover(rows), core::cover(cols)});
-    return plan.work_fraction(int(cycle.size()), 3);
+    std::vector<bool> changed;
+    for (double score : change_scores_reference(views, d.reference)) changed.push_back(score > SkipConfig{}.threshold);
+    if (std::none_of(changed.begin(), changed.end(), [](bool c) { return c; })) return 0;
+    const int K = int(cycle.size());
+    const auto choice = core::choose_sparse(FusionSpec{}, H, W, K, 3, changed, skip_tiles_x(W));
+    return choice ? choice->plan.work_fraction(K, 3) : 1.0;
 }
 
-double max_abs(const Image& a, const Image& b) {
-    double m = 0;
-    for (std::size_t i = 0; i < a.data.size(); ++i) m = std::max(m, std::abs(double(a.data[i]) - double(b.data[i])));
-    return m;
+// The largest |a - b| inside the region fused and outside it.
+struct Errors {
+    double inside = 0, outside = 0;
+};
+Errors max_abs(const Image& a, const Image& b, const SkipRegion& fused) {
+    Errors e;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            double& err = fused.contains(y, x, a.height, a.width) ? e.inside : e.outside;
+            for (int c = 0; c < a.channels; ++c) err = std::max(err, std::abs(double(a.at(y, x, c)) - double(b.at(y, x, c))));
+        }
+    return e;
 }
 
 struct Row {
@@ -259,7 +258,7 @@ int run_scenes(const Options& o) {
     for (const Scene& scene : scenes) {
         const SceneData d = capture(scene, sequence);
         std::vector<SkipConfig> skips = {SkipConfig{}};
-        for (SkipPolicy p : {SkipPolicy::Idle, SkipPolicy::Static})
+        for (SkipPolicy p : {SkipPolicy::Idle, SkipPolicy::Static, SkipPolicy::Tiles})
             for (double t : thresholds) skips.push_back({p, t});
         std::vector<Outcome> outs = run_plans(ctx, d, skips, runs);
         const double full_ms = outs[0].median_ms();
@@ -276,9 +275,9 @@ int run_scenes(const Options& o) {
             Row r{scene.name, std::string(to_string(skips[p].policy)), skips[p].threshold, contact,
                   off ? 1.0 : out.fused_fraction, out.median_ms(), full_ms, 0, 0, tiles};
             for (std::size_t c = 0; c < d.cycles.size(); ++c) {
-                const double e = max_abs(out.fused[c], outs[0].fused[c]);
-                double& err = !off && out.idle[c] ? r.max_abs_err_outside : r.max_abs_err_contact;
-                err = std::max(err, e);
+                const Errors e = max_abs(out.fused[c], outs[0].fused[c], out.regions[c]);
+                r.max_abs_err_contact = std::max(r.max_abs_err_contact, e.inside);
+                r.max_abs_err_outside = std::max(r.max_abs_err_outside, e.outside);
             }
             std::printf("%-6s %-6s %9s %8.3f %7.3f %10.3f %10.3f %7.1f%% %12.3g %12.3g\n", r.scene.c_str(),
                         r.skip.c_str(), off ? "-" : std::to_string(int(r.threshold)).c_str(), r.contact_fraction,

@@ -5,6 +5,7 @@
 #include "compensated.glsl"
 #include "line.glsl"
 #include "filter_taps.glsl"
+#include "sparse.glsl"
 // One level of pywt's periodization DWT along a line (exactly
 // downsampling_convolution_periodization): an odd line is first extended by
 // repeating its last sample to even length N, then
@@ -19,8 +20,8 @@ void main() {
     uint plane = gl_WorkGroupID.z;
     int block = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
     int line = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
+    if (!sparse_place(plane, line, block, pc.lines, (pc.half_len + BLOCK - 1) / BLOCK)) return;
     int o0 = block * BLOCK;
-    if (o0 >= pc.half_len || line >= pc.lines) return;
     float win[WINDOW];
     [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)
         win[i] = BUF(src).v[src_at(plane, line, window_sample(o0, i, pc.half_len, pc.n))];

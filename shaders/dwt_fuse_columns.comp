@@ -16,7 +16,7 @@ layout(local_size_x = 16, local_size_y = 16) in;
 // src: the row pass's output, plane (s*K + k)*C + c; approx: each frame's
 // coefficient block, of which only the approximation is written; fused: the
 // fused block, plane s*C + c.
-#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, approx) X(2, plane_t, fused)
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, approx) X(2, plane_t, fused) X(3, uint, regions)
 #include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
@@ -32,13 +32,16 @@ layout(push_constant, std430) uniform Push {
     uint base_rule;
     uint detail_rule;
     uint deepest;     // 1: the approximation takes the base rule and is not kept
+    uint region;      // sparse.glsl: lines are columns, in a low and a high half
+    uint slot_planes; // channels
 } pc;
+#include "sparse.glsl"
 
 void main() {
-    int x = int(gl_GlobalInvocationID.x);
-    int o0 = int(gl_GlobalInvocationID.y) * BLOCK;
+    int x = int(gl_GlobalInvocationID.x), block = int(gl_GlobalInvocationID.y);
     uint z = gl_WorkGroupID.z;  // s * C + c
-    if (x >= pc.columns || o0 >= pc.half_len) return;
+    if (!sparse_place(z, x, block, pc.columns, (pc.half_len + BLOCK - 1) / BLOCK)) return;
+    int o0 = block * BLOCK;
     uint s = z / pc.channels, c = z % pc.channels;
     bool low_columns = x < pc.approx_w;
     bool keep_approx = low_columns && pc.deepest == 0u;

@@ -5,6 +5,7 @@
 #include "compensated.glsl"
 #include "line.glsl"
 #include "filter_taps.glsl"
+#include "sparse.glsl"
 // One level of pywt's periodization inverse DWT along a line (exactly
 // upsampling_convolution_valid_sf_periodization for (low, rec_lo) plus
 // (high, rec_hi)): with M = half_len coefficients per half, F taps, Hf = F/2,
@@ -22,8 +23,8 @@ void main() {
     int block = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
     int line = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
     const int M = pc.half_len;
+    if (!sparse_place(plane, line, block, pc.lines, (M + BLOCK - 1) / BLOCK)) return;
     int o0 = block * BLOCK;
-    if (o0 >= M || line >= pc.lines) return;
     const int Hf = F / 2;
     const int s = (Hf % 2 == 0) ? 1 : 0;
     const int first = o0 + F / 4 - Hf + 1;  // the windows' first coefficient

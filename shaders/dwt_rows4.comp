@@ -9,7 +9,7 @@
 // consecutive (low, high) pairs of one row (dwt_row_pairs.glsl), its window
 // read as plane4 where it lies inside the row, elsewhere sample by sample,
 // periodic as dwt_forward.
-#define BUFFERS(X) X(0, plane_t, src) X(1, plane4_t, src4) X(2, plane4_t, dst4)
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane4_t, src4) X(2, plane4_t, dst4) X(3, uint, regions)
 #include "bindings.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
@@ -21,13 +21,17 @@ layout(push_constant, std430) uniform Push {
     uint src_plane_stride;
     int dst_row_stride;
     uint dst_plane_stride;
+    uint region;       // sparse.glsl
+    uint slot_planes;  // planes per sensor: K C
 } pc;
 #include "dwt_row_pairs.glsl"
+#include "sparse.glsl"
 
 void main() {
-    int o0 = int(gl_GlobalInvocationID.x) * PAIRS, line = int(gl_GlobalInvocationID.y);
+    int block = int(gl_GlobalInvocationID.x), line = int(gl_GlobalInvocationID.y);
     uint plane = gl_WorkGroupID.z;
-    if (o0 >= pc.half_len || line >= pc.lines) return;
+    if (!sparse_place(plane, line, block, pc.lines, pc.half_len / PAIRS)) return;
+    int o0 = block * PAIRS;
     uint row = plane * pc.src_plane_stride + uint(line * pc.src_row_stride);
     int base = window_base(o0);
     float win[WINDOW_QUADS];

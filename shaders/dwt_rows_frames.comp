@@ -10,7 +10,7 @@
 // one frame (dwt_row_pairs.glsl) for every channel, from windows loaded
 // together, C words or vec4 per four pixels, as unpack.comp reads them.
 // Rows of whole quads (width % 4 == 0) whose half length is a multiple of 8.
-#define BUFFERS(X) X(0, uint, frame_words) X(1, vec4, frame_quads) X(2, plane4_t, dst4)
+#define BUFFERS(X) X(0, uint, frame_words) X(1, vec4, frame_quads) X(2, plane4_t, dst4) X(3, uint, regions)
 #include "bindings.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
@@ -23,15 +23,19 @@ layout(push_constant, std430) uniform Push {
     int lines;        // rows: the height
     int dst_row_stride;
     uint dst_plane_stride;
+    uint region;       // sparse.glsl
+    uint slot_planes;  // frames per sensor
 } pc;
 #define VKFUSE_READS_FRAMES
 #include "frames.glsl"
 #include "dwt_row_pairs.glsl"
+#include "sparse.glsl"
 
 void main() {
-    int o0 = int(gl_GlobalInvocationID.x) * PAIRS, line = int(gl_GlobalInvocationID.y);
+    int block = int(gl_GlobalInvocationID.x), line = int(gl_GlobalInvocationID.y);
     uint f = gl_WorkGroupID.z;  // frame s * K + k
-    if (o0 >= pc.half_len || line >= pc.lines) return;
+    if (!sparse_place(f, line, block, pc.lines, pc.half_len / PAIRS)) return;
+    int o0 = block * PAIRS;
     uint C = pc.channels, row = uint(line * pc.n);  // the row's first pixel
     int base = window_base(o0);
     float w0[WINDOW_QUADS], w1[WINDOW_QUADS], w2[WINDOW_QUADS];

@@ -2,7 +2,8 @@
 // (elements 1 apart) or a column (elements row_stride apart); the same kernel
 // serves both axes through these strides.
 // scheme: lifting kernels' lifting scheme (lifting.glsl); unused by the convolutions.
-#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst) X(2, float, scheme)
+// regions: tile-sparse fusion's records (sparse.glsl); unused by the lifting kernels.
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst) X(2, float, scheme) X(3, uint, regions)
 #include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
@@ -17,6 +18,8 @@ layout(push_constant, std430) uniform Push {
     int dst_elem_stride;
     uint dst_plane_stride;
     uint x_is_line;   // 1: invocation x walks lines (column passes, for coalescing)
+    uint region;      // sparse.glsl (convolutions only)
+    uint slot_planes; // planes per sensor
 } pc;
 
 uint src_at(uint plane, int line, int i) {

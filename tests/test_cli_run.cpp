@@ -33,7 +33,7 @@ TEST(CliRun, SimulatedCoinWithOutputs) {
     ASSERT_EQ(r.status, 0) << r.err;
     ASSERT_EQ(lines_of(r.out).size(), 1u) << r.out;
     // The coin is held still: the first cycle is fused and the others reuse
-    // its result (--skip static, the default).
+    // its result (--skip tiles, the default, reuses as static does).
     EXPECT_TRUE(has(r.out, "\"cycles\": 3, \"sensors\": 1, \"submits\": 1, \"fused\": 3,")) << r.out;
     EXPECT_TRUE(has(r.out, "\"switch_timing\": {\"SIM-0001\": {\"frame_period_s\": ")) << r.out;
     const std::vector<std::string> metrics = lines_of(read_bytes(tmp.file("out/metrics.jsonl")));

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cli_runner.hpp"
 #include "expect_error.hpp"
+#include "vkfuse/core/io.hpp"
+#include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::test {
 namespace {
@@ -153,7 +156,7 @@ TEST(CliRunSkip, SensorsTouchingNothingAreIdle) {
     EXPECT_EQ(number_after(r.out, "submits"), 3) << r.out;
 }
 
-// --skip static (the default): a sensor pressed and held still is fused in
+// --skip static (and tiles, the default): a sensor pressed and held still is fused in
 // its first cycle and reuses that result while its frames stay within noise
 // of those; a release makes it idle, a new press fuses again.
 TEST(CliRunSkip, HeldPressesReuseTheirFirstFusedCycle) {
@@ -219,9 +222,55 @@ TEST(CliRunSkip, CpuAndVulkanSkipTheSameCycles) {
     EXPECT_NE(patterns[0].find('f'), std::string::npos) << patterns[0];
 }
 
+// --skip tiles (the default): a ball sliding across the gel changes part of
+// the frame, and only that part (its tiles' rectangle, "fused_region") is
+// fused. Replayed with --skip off, the same cycles have the same pixels
+// inside that rectangle; the CPU path chooses the same rectangles.
+TEST(CliRunSkip, TilesFuseOnlyTheChangedPartOfASlide) {
+    TempDir tmp;
+    const CliResult r = run_cli({"run", "--virtual-clock", "--cycles", "6", "--object", "ball", "--motion", "slide",
+                                 "--motion-period", "1", "--record", tmp.file("rec"), "--out", tmp.file("tiles")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const CliResult off = run_cli({"run", "--replay", tmp.file("rec"), "--skip", "off", "--out", tmp.file("off")});
+    ASSERT_EQ(off.status, 0) << off.err;
+    const CliResult cpu = run_cli({"run", "--replay", tmp.file("rec"), "--backend", "cpu", "--out", tmp.file("cpu")});
+    ASSERT_EQ(cpu.status, 0) << cpu.err;
+    const std::vector<std::string> lines = lines_of(read_bytes(tmp.file("tiles/metrics.jsonl")));
+    const std::vector<std::string> cpu_lines = lines_of(read_bytes(tmp.file("cpu/metrics.jsonl")));
+    ASSERT_EQ(lines.size(), 6u);
+    ASSERT_EQ(cpu_lines.size(), 6u);
+    int partial = 0;
+    for (std::size_t c = 0; c < lines.size(); ++c) {
+        SCOPED_TRACE("cycle " + std::to_string(c));
+        const std::string& l = lines[c];
+        const std::size_t at = l.find("\"fused_region\": [");
+        EXPECT_EQ(number_after(cpu_lines[c], "fused_fraction"), number_after(l, "fused_fraction"));
+        if (at == std::string::npos) continue;
+        ++partial;
+        EXPECT_NE(cpu_lines[c].find(l.substr(at, l.find(']', at) - at)), std::string::npos) << cpu_lines[c];
+        int top = 0, height = 0, left = 0, width = 0;
+        ASSERT_EQ(std::sscanf(l.c_str() + at, "\"fused_region\": [%d, %d, %d, %d]", &top, &height, &left, &width), 4);
+        const SkipRegion region{top, height, left, width};
+        char name[64];
+        std::snprintf(name, sizeof name, "/fused/SIM-0001/%06zu.png", c);
+        const Image a = io::read_image(tmp.file("tiles") + name), b = io::read_image(tmp.file("off") + name);
+        int inside = 0, differ = 0;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x) {
+                if (!region.contains(y, x, a.height, a.width)) continue;
+                ++inside;
+                for (int ch = 0; ch < 3; ++ch) differ += a.at(y, x, ch) != b.at(y, x, ch);
+            }
+        EXPECT_EQ(inside, height * width);
+        EXPECT_EQ(differ, 0);
+        EXPECT_LT(number_after(l, "fused_fraction"), 1.0);
+    }
+    EXPECT_GE(partial, 3);
+}
+
 TEST(CliRunSkip, BadOptionsAreRefused) {
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-        {{"--skip", "tiles"}, "--skip tiles: expected off, idle or static"},
+        {{"--skip", "all"}, "--skip all: expected off, idle, static or tiles"},
         {{"--skip", "idle", "--background-frames", "1"}, "--skip idle: needs --background-frames of at least 2 (the noise each tile is judged by)"},
         {{"--skip-threshold", "0"}, "--skip-threshold 0: expected a positive number"},
         {{"--skip-threshold", "nan"}, "--skip-threshold nan: expected a positive number"},

@@ -83,7 +83,7 @@ struct Synthetic {
             CycleResult r;
             r.cycle = std::uint64_t(c);
             r.sensors.push_back(ok(0, 1.0 + 0.1 * c));
-            if (c >= 3) r.sensors.back().skip = {true, false, 0.0, 0.0, 1.5};  // SIM-0001 idle from cycle 3
+            if (c >= 3) r.sensors.back().skip = {true, false, 0.0, 0.0, 1.5, {}};  // SIM-0001 idle from cycle 3
             r.sensors.push_back(c == 2 ? not_ok(1, SensorStatus::Timeout, "SIM-0002: no frames within 5 s")
                                        : ok(1, 2.0 + 0.04 * c));
             r.sensors.push_back(c < 2 ? ok(2, 0.5 + 0.25 * c)

@@ -36,11 +36,14 @@ TEST(KernelInterface, SharedPushBlocksDeclareTheirBuffersToo) {
     EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).bindings, 2u);
     EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).push_bytes, 10u * 4u);
     EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse_addr")).push_bytes, 2u * 8u + 10u * 4u);
-    // dwt_forward.comp's block comes from line.glsl: src, dst, scheme; eleven scalars.
+    // dwt_forward.comp's block comes from line.glsl: src, dst, scheme, regions;
+    // thirteen scalars.
     const vk::KernelInterface line = vk::reflect_kernel(vk::shader_spirv("dwt_forward"));
-    EXPECT_EQ(line.bindings, 3u);
-    EXPECT_EQ(line.push_bytes, 11u * 4u);
-    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("dwt_forward_fp16_addr")).push_bytes, 3u * 8u + 11u * 4u);
+    EXPECT_EQ(line.bindings, 4u);
+    EXPECT_EQ(line.push_bytes, 13u * 4u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("dwt_forward_fp16_addr")).push_bytes, 4u * 8u + 13u * 4u);
+    // The lifting kernels share the block, and bind every buffer of it.
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("lift_forward")).bindings, 4u);
 }
 
 TEST(KernelInterface, RejectsWordsThatAreNotSpirv) {

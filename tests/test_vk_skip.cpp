@@ -10,76 +10,12 @@
 
 #include "core/method_table.hpp"
 #include "expect_error.hpp"
+#include "skip_scene.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::test {
 namespace {
-
-using Bytes = std::vector<std::uint8_t>;
-
-// A scene: K background means with a per-pixel deviation, and frames drawn
-// from it with noise of that deviation.
-struct Scene {
-    int h, w, c, k;
-    SkipReference reference;
-};
-
-Scene make_scene(int h, int w, int c, int k, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> level(0.2f, 0.8f), spread(1.0f / 255, 3.0f / 255);
-    Scene s{h, w, c, k, {}};
-    for (int i = 0; i < k; ++i) {
-        Image mean(h, w, c), dev(h, w, c);
-        for (float& v : mean.data) v = level(rng);
-        for (float& v : dev.data) v = spread(rng);
-        s.reference.mean.push_back(std::move(mean));
-        s.reference.deviation.push_back(std::move(dev));
-    }
-    return s;
-}
-
-// K frames of the scene, noise of the given number of deviations at most,
-// and where `press` is set a square of pixels moved by 0.3.
-std::vector<Bytes> frames_of(const Scene& s, std::uint32_t seed, double noise, bool press) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    std::vector<Bytes> out;
-    for (int k = 0; k < s.k; ++k) {
-        Bytes f(std::size_t(s.h) * s.w * s.c);
-        for (int y = 0; y < s.h; ++y)
-            for (int x = 0; x < s.w; ++x)
-                for (int ch = 0; ch < s.c; ++ch) {
-                    const std::size_t i = (std::size_t(y) * s.w + x) * s.c + ch;
-                    double v = s.reference.mean[k].data[i] + noise * u(rng) * s.reference.deviation[k].data[i];
-                    if (press && y >= s.h / 3 && y < s.h / 2 && x >= s.w / 3 && x < s.w / 2) v += 0.3;
-                    f[i] = std::uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255));
-                }
-        out.push_back(std::move(f));
-    }
-    return out;
-}
-
-std::vector<FrameView> views(const Scene& s, const std::vector<std::vector<Bytes>>& sensors) {
-    std::vector<FrameView> v;
-    for (const auto& frames : sensors)
-        for (const Bytes& f : frames) v.push_back({f.data(), s.h, s.w, s.c, PixelType::U8});
-    return v;
-}
-
-PlanConfig skip_config(const Scene& s, int sensors, FusionSpec spec, SkipPolicy policy, double threshold) {
-    PlanConfig cfg;
-    cfg.fusion = spec;
-    cfg.height = s.h;
-    cfg.width = s.w;
-    cfg.channels = s.c;
-    cfg.frames = s.k;
-    cfg.sensors = sensors;
-    cfg.input = PixelType::U8;
-    cfg.metrics = MetricSet::all();
-    cfg.skip = {policy, threshold};
-    return cfg;
-}
 
 // Small frames carry few wavelet levels.
 FusionSpec haar() {

@@ -40,7 +40,7 @@ constexpr OptionSpec kOptions[] = {
     {"--virtual-clock", "", "", "simulate on virtual clocks: as fast as the host allows, deterministic"},
     {"--camera-auto", "", "", "simulate the camera's auto exposure and white balance (default: locked)"},
     {"--background-frames", "", "N", "no-contact frames averaged per setting for the background (default 20; 0: none)"},
-    {"--skip", "", "MODE", "off; idle: a sensor whose frames stay within its background noise is not fused; static: also one whose frames match its last fused cycle (default static)"},
+    {"--skip", "", "MODE", "off; idle: a sensor whose frames stay within its background noise is not fused; static: also one whose frames match its last fused cycle; tiles: also a changed sensor fuses only its changed tiles and their halo (default tiles)"},
     {"--skip-threshold", "", "K", "a tile changed when a sample lies over K x the tile's noise from the background (default 8)"},
     {"--metrics", "", "LIST", "the metrics computed and written, comma-separated: sharpness, contrast, background_diff (default all three; background_diff needs a background)"},
     {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},

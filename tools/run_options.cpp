@@ -84,10 +84,10 @@ void metric_options(const Args& args, RunOptions& o) {
 }  // namespace
 
 void background_options(const Args& args, RunOptions& o) {
-    o.skip.policy = o.background_frames >= 2 ? SkipPolicy::Static : SkipPolicy::Off;
+    o.skip.policy = o.background_frames >= 2 ? SkipPolicy::Tiles : SkipPolicy::Off;
     if (auto v = args.value("--skip")) {
         const std::optional<SkipPolicy> p = parse_skip_policy(*v);
-        if (!p) fail("--skip " + *v + ": expected off, idle or static");
+        if (!p) fail("--skip " + *v + ": expected off, idle, static or tiles");
         if (*p != SkipPolicy::Off && o.background_frames < 2)
             fail("--skip " + *v + ": needs --background-frames of at least 2 (the noise each tile is judged by)");
         o.skip.policy = *p;

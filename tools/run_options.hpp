@@ -36,7 +36,7 @@ struct RunOptions {
     bool camera_auto = false;  // simulated DIGITs: auto exposure and white balance on
     std::optional<std::string> replay, record, out;
     int background_frames = 0;
-    // Skipping: static unless --skip says otherwise or there is no
+    // Skipping: tiles unless --skip says otherwise or there is no
     // background to compare with (--background-frames 0 or 1).
     SkipConfig skip;
     // --metrics: all three unless told; background_diff only with a background.

@@ -103,6 +103,10 @@ std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const s
     if (skipping) {
         line += ", \"change_score\": " + json_number(s.skip.score);
         if (s.skip.reused) line += ", \"reused\": true";
+        const SkipRegion& r = s.skip.fused_region;
+        if (s.skip.fused_fraction > 0 && s.skip.fused_fraction < 1)
+            line += ", \"fused_region\": [" + std::to_string(r.top) + ", " + std::to_string(r.height) + ", " +
+                    std::to_string(r.left) + ", " + std::to_string(r.width) + "]";
         if (s.watch) line += ", \"watch\": true";
     }
     return line + "}";

@@ -16,12 +16,13 @@ std::string_view to_string(SkipPolicy policy) {
         case SkipPolicy::Off: return "off";
         case SkipPolicy::Idle: return "idle";
         case SkipPolicy::Static: return "static";
+        case SkipPolicy::Tiles: return "tiles";
     }
     return "?";
 }
 
 std::optional<SkipPolicy> parse_skip_policy(std::string_view text) {
-    for (SkipPolicy p : {SkipPolicy::Off, SkipPolicy::Idle, SkipPolicy::Static})
+    for (SkipPolicy p : {SkipPolicy::Off, SkipPolicy::Idle, SkipPolicy::Static, SkipPolicy::Tiles})
         if (text == to_string(p)) return p;
     return std::nullopt;
 }

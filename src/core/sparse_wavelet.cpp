@@ -8,6 +8,7 @@
 
 #include "core/rules.hpp"
 #include "core/wavelet.hpp"
+#include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::core {
 namespace {
@@ -87,6 +88,23 @@ CircularRange cover(const std::vector<char>& marks) {
         gap = 0;
     }
     return {n, best_gap == 0 ? 0 : best_end, n - best_gap};
+}
+
+std::optional<SparseChoice> choose_sparse(const FusionSpec& spec, int H, int W, int frames, int channels,
+                                          const std::vector<bool>& changed, int tiles_x) {
+    if (spec.method != Method::Wavelet || spec.mode != WaveletMode::Periodization) return std::nullopt;
+    std::vector<char> rows(std::size_t(H), 0), cols(std::size_t(W), 0);
+    for (std::size_t t = 0; t < changed.size(); ++t) {
+        if (!changed[t]) continue;
+        const int ty = int(t) / tiles_x, tx = int(t) % tiles_x;
+        for (int y = ty * kSkipTile; y < std::min(H, (ty + 1) * kSkipTile); ++y) rows[std::size_t(y)] = 1;
+        for (int x = tx * kSkipTile; x < std::min(W, (tx + 1) * kSkipTile); ++x) cols[std::size_t(x)] = 1;
+    }
+    SparseChoice choice{{cover(rows), cover(cols)}, {}};
+    if (choice.rect.rows.full() && choice.rect.cols.full()) return std::nullopt;
+    choice.plan = plan_sparse_wavelet(spec, H, W, choice.rect);
+    if (choice.plan.work_fraction(frames, channels) > kMaxSparseWork) return std::nullopt;
+    return choice;
 }
 
 double SparseWaveletPlan::work_fraction(int frames, int channels) const {

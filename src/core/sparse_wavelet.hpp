@@ -24,6 +24,7 @@
 // samples computed before it: the CPU twin checks that with NaN everywhere
 // else.
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "core/plane.hpp"
@@ -71,6 +72,20 @@ SparseWaveletPlan plan_sparse_wavelet(const FusionSpec& spec, int height, int wi
 
 // The smallest circular range over n holding every marked index (marks.size() == n).
 CircularRange cover(const std::vector<char>& marks);
+
+// SkipPolicy::Tiles' choice for a changed sensor: the rectangle covering its
+// changed tiles (kSkipTile a side, row-major, tiles_x across) and its plan,
+// or nullopt where it is fused whole: the fusion is not a periodization
+// wavelet, the rectangle is the frame, or the plan's work exceeds
+// kMaxSparseWork of full fusion's (the halo covers most of the frame, and
+// full fusion costs about the same).
+inline constexpr double kMaxSparseWork = 0.85;
+struct SparseChoice {
+    RangeRect rect;
+    SparseWaveletPlan plan;
+};
+std::optional<SparseChoice> choose_sparse(const FusionSpec& spec, int height, int width, int frames, int channels,
+                                          const std::vector<bool>& changed_tiles, int tiles_x);
 
 // The CPU twin of a tile-sparse fusion: fuse_wavelet's arithmetic, computed
 // only inside the plan's regions, NaN everywhere else. Inside the output

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sparse_wavelet.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"
 
@@ -101,7 +102,16 @@ private:
         const auto changed = std::count_if(scores.begin(), scores.end(), [&](double v) { return !(v <= cfg_.skip.threshold); });
         o.idle = changed == 0;
         o.reused = !o.idle && sk.kept && still(s, frames);
-        o.fused_fraction = o.idle || o.reused ? 0.0 : 1.0;
+        o.fused_region = o.idle || o.reused ? SkipRegion{} : SkipRegion{0, cfg_.height, 0, cfg_.width};
+        if (!o.idle && !o.reused && cfg_.skip.policy == SkipPolicy::Tiles) {
+            std::vector<bool> mask;
+            for (double v : scores) mask.push_back(!(v <= cfg_.skip.threshold));
+            if (const auto choice = core::choose_sparse(cfg_.fusion, cfg_.height, cfg_.width, cfg_.frames,
+                                                        cfg_.channels, mask, skip_tiles_x(cfg_.width)))
+                o.fused_region = {choice->rect.rows.start, choice->rect.rows.length, choice->rect.cols.start,
+                                  choice->rect.cols.length};
+        }
+        o.fused_fraction = double(o.fused_region.height) * o.fused_region.width / (double(cfg_.height) * cfg_.width);
         o.changed_fraction = double(changed) / double(scores.size());
         o.score = *std::max_element(scores.begin(), scores.end());
         if (o.reused) {
@@ -137,10 +147,17 @@ private:
         if (skipped(s, frames)) return;
         std::vector<ImageD> images;
         for (const FrameView& v : frames) images.push_back(to_double(v));
-        const ImageD fused = fuse_reference(images, cfg_.fusion);
+        ImageD fused = fuse_reference(images, cfg_.fusion);
+        // Tiles: outside the rectangle fused, the fused reference, as the device composes it.
+        const SkipRegion& region = outcomes_[s].fused_region;
+        if (cfg_.skip.policy == SkipPolicy::Tiles && region.height * region.width < cfg_.height * cfg_.width)
+            for (int y = 0; y < fused.height; ++y)
+                for (int x = 0; x < fused.width; ++x)
+                    if (!region.contains(y, x, fused.height, fused.width))
+                        for (int c = 0; c < fused.channels; ++c) fused.at(y, x, c) = skip_[s].fused.at(y, x, c);
         if (!cfg_.metrics.empty()) metrics_[s] = metrics_of(s, fused);
         fused_[s] = convert<float>(fused);
-        if (cfg_.skip.policy != SkipPolicy::Static) return;
+        if (!reuses_still_presses(cfg_.skip.policy)) return;
         SensorSkip& sk = skip_[s];
         sk.previous.clear();
         for (const FrameView& v : frames) {

@@ -116,6 +116,8 @@ std::vector<std::uint32_t> filter_specialization(Wavelet w) {
 // Outputs (forward: coefficient pairs; inverse: coefficient indices o) per
 // invocation of dwt_forward / dwt_inverse: BLOCK in filter_taps.glsl.
 constexpr int kConvBlock = 4;
+// Pixels of a row per invocation of sparse_compose (SPAN there).
+constexpr std::uint32_t kComposeSpan = 32;
 
 class WaveletGraph {
 public:
@@ -151,13 +153,13 @@ public:
                 forward_from_frames(input, t, rows);
             } else {
                 if (l == 0) a = {input.planes(), g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
-                forward(a, t, rows, g_.planes_in());
+                forward(a, t, rows, g_.planes_in(), l);
             }
             PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             if (periodization_) {
-                fuse_columns(t, d, f, s, l == L - 1);
+                fuse_columns(t, d, f, s, l, l == L - 1);
             } else {
-                forward(t, d, {s.h, s.ch, high(s.h, s.ch), s.bw, false}, g_.planes_in());
+                forward(t, d, {s.h, s.ch, high(s.h, s.ch), s.bw, false}, g_.planes_in(), -1);
                 fuse(d, f, s, l == L - 1);
             }
             fused.push_back(f);
@@ -171,10 +173,12 @@ public:
             PlaneView u{inv_scratch, s.bw, std::uint32_t(s.h * s.bw)};
             PlaneView dst = l > 0 ? fused[std::size_t(l) - 1]
                                  : PlaneView{out_addr, g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
-            inverse(fused[std::size_t(l)], u, {s.h, s.ch, high(s.h, s.ch), s.bw, false});
-            inverse(u, dst, {s.w, s.cw, high(s.w, s.cw), s.h, true});
+            inverse(fused[std::size_t(l)], u, {s.h, s.ch, high(s.h, s.ch), s.bw, false},
+                    region(SparsePass::InverseCols, l, kConvBlock));
+            inverse(u, dst, {s.w, s.cw, high(s.w, s.cw), s.h, true}, region(SparsePass::InverseRows, l, kConvBlock));
         }
         g_.rec.mark("idwt");
+        if (g_.sparse) compose(out_addr);
         return out_addr;
     }
 
@@ -187,6 +191,35 @@ private:
     std::vector<LevelShape> shapes_;
 
     int high(int n, int half) const { return periodization_ ? half : n - half; }
+
+    // A region-aware dispatch's push value and records (shaders/sparse.glsl):
+    // none (0, any buffer bound in its place) unless the plan fuses sparsely.
+    struct Region {
+        std::uint32_t push = 0;
+        std::optional<DeviceSpan> records;
+        DeviceSpan or_else(DeviceSpan unused) const { return records ? *records : unused; }
+    };
+    Region region(SparsePass pass, int level, int block) {
+        if (!g_.sparse) return {};
+        // Column passes walk lines along x (dispatch_line, fuse_columns).
+        const bool x_is_line = pass == SparsePass::ForwardCols || pass == SparsePass::InverseCols;
+        const std::uint32_t next = std::uint32_t(g_.rec.sensor_dispatches().size());
+        return {g_.sparse->declare({pass, level, block, next, x_is_line}), g_.sparse->regions()};
+    }
+
+    // Outside the rectangle each sparsely fused slot computed, its fused background.
+    void compose(VkDeviceAddress out) {
+        const Region r = region(SparsePass::Compose, 0, 1);
+        g_.rec.dispatch("sparse_compose", {g_.span(out), g_.sparse->backgrounds(), *r.records},
+                        PushConstants()
+                            .u32(r.push)
+                            .u32(std::uint32_t(g_.cfg.channels))
+                            .i32(g_.cfg.width)
+                            .i32(g_.cfg.height),
+                        groups(groups(std::uint32_t(g_.cfg.width), kComposeSpan), 16),
+                        groups(std::uint32_t(g_.cfg.height), 16), g_.planes_out());
+        g_.rec.mark("sparse_compose");
+    }
 
     PushConstants line_push(const PlaneView& src, const PlaneView& dst, const LineSpec& ls) const {
         // Along rows: next line is a row below, next sample is adjacent.
@@ -210,18 +243,19 @@ private:
     // Lifting: an invocation per line. Convolution: per line, an invocation
     // per kConvBlock of the half_len coefficient positions.
     void dispatch_line(const char* conv, const char* lift, const PlaneView& src, const PlaneView& dst, const LineSpec& ls,
-                       std::uint32_t planes) {
-        const auto push = line_push(src, dst, ls);
+                       std::uint32_t planes, const Region& r) {
+        const auto push = line_push(src, dst, ls).u32(r.push).u32(planes / std::uint32_t(g_.cfg.sensors));
         const DeviceSpan in = g_.span(src.addr), out = g_.span(dst.addr), scheme = scheme_ ? g_.span(scheme_) : in;
+        const DeviceSpan records = r.or_else(in);
         const std::uint32_t blocks = groups(std::uint32_t(ls.half_len), kConvBlock);
         if (!periodization_) {
-            g_.rec.dispatch(lift, {in, out, scheme}, push, groups(std::uint32_t(ls.lines), 64), 1, planes);
+            g_.rec.dispatch(lift, {in, out, scheme, records}, push, groups(std::uint32_t(ls.lines), 64), 1, planes);
         } else if (ls.along_rows) {
-            g_.rec.dispatch(conv, {in, out, scheme}, push, groups(blocks, 16), groups(std::uint32_t(ls.lines), 16),
-                            planes, taps_);
+            g_.rec.dispatch(conv, {in, out, scheme, records}, push, groups(blocks, 16),
+                            groups(std::uint32_t(ls.lines), 16), planes, taps_);
         } else {
-            g_.rec.dispatch(conv, {in, out, scheme}, push, groups(std::uint32_t(ls.lines), 16), groups(blocks, 16),
-                            planes, taps_);
+            g_.rec.dispatch(conv, {in, out, scheme, records}, push, groups(std::uint32_t(ls.lines), 16),
+                            groups(blocks, 16), planes, taps_);
         }
     }
 
@@ -231,23 +265,30 @@ private:
         return periodization_ && ls.half_len % 8 == 0 && ls.n % 4 == 0;
     }
     void forward_from_frames(const FrameSource& input, const PlaneView& dst, const LineSpec& ls) {
-        g_.rec.dispatch("dwt_rows_frames", {input.frames(), input.frames(), g_.span(dst.addr)},
+        const Region r = region(SparsePass::ForwardRows, 0, 8);
+        g_.rec.dispatch("dwt_rows_frames", {input.frames(), input.frames(), g_.span(dst.addr), r.or_else(input.frames())},
                         input.frame_fields()
                             .i32(ls.n)
                             .i32(ls.half_len)
                             .i32(ls.lines)
                             .i32(dst.row_stride)
-                            .u32(dst.plane_stride),
+                            .u32(dst.plane_stride)
+                            .u32(r.push)
+                            .u32(std::uint32_t(g_.cfg.frames)),
                         groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16),
                         std::uint32_t(g_.cfg.sensors * g_.cfg.frames), taps_);
     }
 
-    void forward(const PlaneView& src, const PlaneView& dst, const LineSpec& ls, std::uint32_t planes) {
+    // A row pass at `level` (region-aware), or a lifting column pass (level -1).
+    void forward(const PlaneView& src, const PlaneView& dst, const LineSpec& ls, std::uint32_t planes, int level) {
         // Rows of whole quads: eight pairs per invocation, plane4 loads and stores.
-        if (periodization_ && ls.along_rows && ls.half_len % 8 == 0 && src.row_stride % 4 == 0 &&
-            src.plane_stride % 4 == 0 && dst.row_stride % 4 == 0 && dst.plane_stride % 4 == 0) {
+        const bool rows4 = periodization_ && ls.along_rows && ls.half_len % 8 == 0 && src.row_stride % 4 == 0 &&
+                           src.plane_stride % 4 == 0 && dst.row_stride % 4 == 0 && dst.plane_stride % 4 == 0;
+        const Region r = level >= 0 && periodization_ ? region(SparsePass::ForwardRows, level, rows4 ? 8 : kConvBlock)
+                                                      : Region{};
+        if (rows4) {
             const DeviceSpan in = g_.span(src.addr);
-            g_.rec.dispatch("dwt_rows4", {in, in, g_.span(dst.addr)},
+            g_.rec.dispatch("dwt_rows4", {in, in, g_.span(dst.addr), r.or_else(in)},
                             PushConstants()
                                 .i32(ls.n)
                                 .i32(ls.half_len)
@@ -255,22 +296,26 @@ private:
                                 .i32(src.row_stride)
                                 .u32(src.plane_stride)
                                 .i32(dst.row_stride)
-                                .u32(dst.plane_stride),
+                                .u32(dst.plane_stride)
+                                .u32(r.push)
+                                .u32(planes / std::uint32_t(g_.cfg.sensors)),
                             groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16), planes,
                             taps_);
             return;
         }
-        dispatch_line("dwt_forward", "lift_forward", src, dst, ls, planes);
+        dispatch_line("dwt_forward", "lift_forward", src, dst, ls, planes, r);
     }
-    void inverse(const PlaneView& src, const PlaneView& dst, const LineSpec& ls) {
-        dispatch_line("dwt_inverse", "lift_inverse", src, dst, ls, g_.planes_out());
+    void inverse(const PlaneView& src, const PlaneView& dst, const LineSpec& ls, const Region& r) {
+        dispatch_line("dwt_inverse", "lift_inverse", src, dst, ls, g_.planes_out(), r);
     }
 
     // Periodization: the column pass and the fusion in one kernel; of each
     // frame's block only the approximation the next level needs is written.
     void fuse_columns(const PlaneView& rows, const PlaneView& coeffs, const PlaneView& out, const LevelShape& s,
-                      bool deepest) {
-        g_.rec.dispatch("dwt_fuse_columns", {g_.span(rows.addr), g_.span(coeffs.addr), g_.span(out.addr)},
+                      int level, bool deepest) {
+        const Region r = region(SparsePass::ForwardCols, level, kConvBlock);
+        const DeviceSpan src = g_.span(rows.addr);
+        g_.rec.dispatch("dwt_fuse_columns", {src, g_.span(coeffs.addr), g_.span(out.addr), r.or_else(src)},
                         PushConstants()
                             .i32(s.h)
                             .i32(s.ch)
@@ -283,7 +328,9 @@ private:
                             .u32(std::uint32_t(g_.cfg.channels))
                             .u32(std::uint32_t(spec_.base_rule))
                             .u32(std::uint32_t(spec_.detail_rule))
-                            .u32(deepest ? 1 : 0),
+                            .u32(deepest ? 1 : 0)
+                            .u32(r.push)
+                            .u32(std::uint32_t(g_.cfg.channels)),
                         groups(std::uint32_t(s.bw), 16), groups(groups(std::uint32_t(s.ch), kConvBlock), 16),
                         g_.planes_out(), taps_);
     }

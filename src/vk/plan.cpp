@@ -103,6 +103,7 @@ void Plan::Impl::record() {
         background_in_slot.assign(std::size_t(cfg.sensors), -1);
     }
     vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
+    if (skip) g.sparse = skip->sparse();
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
     const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);

@@ -32,6 +32,9 @@ struct GraphBuilder {
     VkDeviceAddress brovey_thresholds = 0;
     // Buffers the plan owns outside `buffers` (upload, background, readback).
     std::vector<const Buffer*> fixed;
+    // Tile-sparse fusion (vk/plan_sparse.hpp): the region records the
+    // wavelet's dispatches declare theirs in; null when the plan fuses whole.
+    SparseRegions* sparse = nullptr;
 
     std::uint32_t planes_in() const { return std::uint32_t(cfg.sensors * cfg.frames * cfg.channels); }
     std::uint32_t planes_out() const { return std::uint32_t(cfg.sensors * cfg.channels); }

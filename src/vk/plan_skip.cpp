@@ -26,6 +26,7 @@ SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& up
         statics_ = Buffer(ctx, S * tiles * 4, MemoryUse::Readback);
     }
     indirect_ = Buffer(ctx, kMaxDispatches * sizeof(VkDispatchIndirectCommand), MemoryUse::Upload);
+    if (sparse_capable(cfg)) sparse_.emplace(ctx, cfg);
     reference_set_.assign(S, false);
     fused_.resize(S);
     idle_metrics_.resize(S);
@@ -75,6 +76,7 @@ void SkipState::set_reference(int sensor, const SkipReference& reference) {
     std::vector<ImageD> means_d;
     for (const Image& m : reference.mean) means_d.push_back(convert<double>(m));
     fused_[std::size_t(sensor)] = convert<float>(fuse_reference(means_d, cfg_.fusion));
+    if (sparse_) sparse_->set_background(sensor, fused_[std::size_t(sensor)]);
     background_changed(sensor);
     reference_set_[std::size_t(sensor)] = true;
 }
@@ -121,6 +123,7 @@ std::vector<int> SkipState::detect() {
     const float* still = statics() ? static_cast<const float*>(statics_.mapped()) : nullptr;
     const float* scores = static_cast<const float*>(scores_.mapped());
     std::vector<int> fused;
+    if (sparse_) sparse_->begin_run();
     for (int s = 0; s < cfg_.sensors; ++s) {
         std::size_t changed = 0;
         float top = 0;
@@ -138,7 +141,15 @@ std::vector<int> SkipState::detect() {
             for (std::size_t t = 0; t < tiles && o.reused; ++t) o.reused = still[std::size_t(s) * tiles + t] <= cfg_.skip.threshold;
         }
         const bool skipped = o.idle || o.reused;
-        o.fused_fraction = skipped ? 0.0 : 1.0;
+        o.fused_region = skipped ? SkipRegion{} : SkipRegion{0, cfg_.height, 0, cfg_.width};
+        if (!skipped && sparse_) {
+            std::vector<bool> mask(tiles);
+            for (std::size_t t = 0; t < tiles; ++t) mask[t] = !(scores[std::size_t(s) * tiles + t] <= cfg_.skip.threshold);
+            o.fused_region = sparse_->write(int(fused.size()), s,
+                                            core::choose_sparse(cfg_.fusion, cfg_.height, cfg_.width, cfg_.frames,
+                                                                cfg_.channels, mask, int(tiles_x_)));
+        }
+        o.fused_fraction = double(o.fused_region.height) * o.fused_region.width / (double(cfg_.height) * cfg_.width);
         o.changed_fraction = double(changed) / double(tiles);
         o.score = top;
         slot_[std::size_t(s)] = skipped ? std::nullopt : std::optional<int>(int(fused.size()));
@@ -147,6 +158,7 @@ std::vector<int> SkipState::detect() {
     auto* args = static_cast<VkDispatchIndirectCommand*>(indirect_.mapped());
     for (std::size_t d = 0; d < dispatches_.size(); ++d)
         args[d] = {dispatches_[d][0], dispatches_[d][1], dispatches_[d][2] * std::uint32_t(fused.size())};
+    if (sparse_ && !fused.empty()) sparse_->shrink(args);
     return fused;
 }
 

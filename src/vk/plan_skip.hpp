@@ -11,6 +11,8 @@
 // SkipPolicy::Static the frames of each sensor's last fused cycle are kept on
 // the device, and its result on the host (taken from the read-back buffer at
 // the start of the next run): a sensor whose frames still match them reuses it.
+// Under SkipPolicy::Tiles a fused sensor may be fused only in part
+// (vk/plan_sparse.hpp).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -21,6 +23,7 @@
 #include "vk/buffer.hpp"
 #include "vk/command_slot.hpp"
 #include "vk/descriptor_sets.hpp"
+#include "vk/plan_sparse.hpp"
 #include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::vk {
@@ -57,7 +60,9 @@ public:
     Metrics skipped_metrics(int sensor, const float* planar_background);
     void background_changed(int sensor);
 
-    bool statics() const { return cfg_.skip.policy == SkipPolicy::Static; }
+    bool statics() const { return reuses_still_presses(cfg_.skip.policy); }
+    // Tiles on a plan that can fuse sparsely: its region records; else null.
+    SparseRegions* sparse() { return sparse_ ? &*sparse_ : nullptr; }
     // The fused sensors' frames become what their next cycles are compared with.
     void keep_frames(std::span<const FrameView> frames, const std::vector<int>& fused_sensors);
     // Whether sensor's result of the last run is still to be kept; keep it.
@@ -74,6 +79,7 @@ private:
     Buffer previous_;   // Static: S*K frames of each sensor's last fused cycle, 8-bit
     Buffer statics_;    // Static: S*tiles scores against them, read back
     Buffer indirect_;   // VkDispatchIndirectCommand per fusion dispatch
+    std::optional<SparseRegions> sparse_;
     std::optional<DescriptorSets> sets_;
     std::optional<CommandSlot> detect_;
     std::vector<std::array<std::uint32_t, 3>> dispatches_;

@@ -18,8 +18,15 @@ enum class SkipPolicy {
     // Idle, and a sensor none of whose tiles changed since the last cycle it
     // was fused reuses that cycle's result (a held, still press).
     Static,
+    // Static, and a changed sensor fuses only what its changed tiles need
+    // (their rectangle, and the halo the method reaches through); the rest of
+    // its result is its fused reference. Periodization wavelets in float32
+    // planes; any other fusion fuses a changed sensor whole, as Static.
+    Tiles,
 };
-std::string_view to_string(SkipPolicy policy);  // "off", "idle", "static"
+// Whether the policy reuses a held press's last result (Static and Tiles).
+inline bool reuses_still_presses(SkipPolicy p) { return p == SkipPolicy::Static || p == SkipPolicy::Tiles; }
+std::string_view to_string(SkipPolicy policy);  // "off", "idle", "static", "tiles"
 std::optional<SkipPolicy> parse_skip_policy(std::string_view text);
 
 // Change detection works on square tiles of this many pixels a side (the
@@ -39,13 +46,25 @@ struct SkipConfig {
     double threshold = 8.0;
 };
 
+// The part of a frame a cycle fused: rows top .. top + height - 1 and
+// columns left .. left + width - 1, each taken modulo the frame's size (the
+// rectangle may wrap past an edge, as a periodic wavelet does). Its pixels
+// are full fusion's; the others are the fused reference's.
+struct SkipRegion {
+    int top = 0, height = 0, left = 0, width = 0;
+    bool contains(int y, int x, int frame_height, int frame_width) const {
+        return (y - top + frame_height) % frame_height < height && (x - left + frame_width) % frame_width < width;
+    }
+};
+
 // How one sensor's cycle was treated (Plan::skip_outcome, SensorCycle::skip).
 struct SkipOutcome {
     bool idle = false;             // not fused: its result is the fused reference and that image's metrics
     bool reused = false;           // not fused: its result is that of the last cycle it was fused in
-    double fused_fraction = 1;     // share of the frame's tiles fused this run
+    double fused_fraction = 1;     // share of the frame fused this run (fused_region's area)
     double changed_fraction = 1;   // share of tiles whose score exceeded the threshold
     double score = 0;              // the largest tile score
+    SkipRegion fused_region;       // what was fused: empty when idle or reused, else the whole frame or (Tiles) part
 };
 
 // What a sensor's frames are compared with: for each frame k of a cycle (lit
