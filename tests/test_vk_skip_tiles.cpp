@@ -91,6 +91,14 @@ TEST_F(VulkanSkipTiles, ChangedTilesHaveFullFusionsBitsAndTheRestTheReferences) 
     }
 }
 
+// The kernels' device-address variants (plans beyond maxStorageBufferRange)
+// read the same records.
+TEST_F(VulkanSkipTiles, DeviceAddressesToo) {
+    FusionSpec bior44;
+    bior44.levels = 2;
+    check_tiles(addressed_context(), make_scene(192, 256, 3, 2, 17), bior44);
+}
+
 // Rows that are not whole quads or whose halves are not multiples of 8 take
 // the general kernels; odd sizes are padded as pywt pads them.
 TEST_F(VulkanSkipTiles, OddSizesAndTheDefaultWavelet) {
