@@ -65,3 +65,8 @@ bash tests/soak/rig_soak.sh build/vkfuse 100000 --method brovey --backend cpu --
 stage_done "soak: vkfuse run cpu (100k)"
 bash tests/soak/rig_soak.sh build/vkfuse 10000 --method wavelet --backend vulkan --skip off
 stage_done "soak: vkfuse run vulkan (10k)"
+# (c) Tile-sparse fusion (--skip tiles, the default) on a ball sliding across
+#     the gel: every cycle fuses part of the frame, from records rewritten
+#     each run.
+bash tests/soak/rig_soak.sh build/vkfuse 10000 --backend vulkan --object ball --motion slide --motion-period 1
+stage_done "soak: vkfuse run vulkan tiles (10k)"
