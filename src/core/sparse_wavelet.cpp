@@ -2,6 +2,7 @@
 // with the periodization formulas of core/wavelet.hpp.
 #include "core/sparse_wavelet.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>

@@ -1,9 +1,9 @@
 // Tile-sparse fusion's region records (vk/plan_sparse.hpp).
 #include "vk/plan_sparse.hpp"
 
+#include <algorithm>
 #include <cstring>
 
-#include "core/wavelet.hpp"
 #include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::vk {
