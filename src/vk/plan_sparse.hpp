@@ -7,15 +7,16 @@
 //     changed tiles -> their rectangle R (circular rows x columns)
 //     plan_sparse_wavelet(R): per level and pass, the lines and blocks to compute
 //     -> region records [dispatch][slot] in a host-written buffer (full ones
-//        for a slot fused whole)
+//        for a slot fused whole); each dispatch's indirect grid cut to the
+//        largest of its records
 //   fusion command buffer, as recorded:
 //     dwt_rows_frames / dwt_rows4 / dwt_forward   (forward rows,  region records)
 //     dwt_fuse_columns                            (forward columns + fusion)
 //     dwt_inverse x 2 per level                   (inverse columns, rows)
 //     sparse_compose: outside R, slot j takes sensor s's fused background
 //
-// Each kernel keeps its recorded grid; an invocation maps to the record's
-// circular ranges (shaders/sparse.glsl) or leaves.
+// An invocation maps onto its slot's record's circular ranges
+// (shaders/sparse.glsl) or leaves; the compose keeps its whole grid.
 #pragma once
 #include <array>
 #include <cstdint>
