@@ -9,6 +9,7 @@
 
 #include "core/rules.hpp"
 #include "core/wavelet.hpp"
+#include "core/wavelet_axis.hpp"
 #include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::core {
@@ -28,26 +29,33 @@ CircularRange united(const CircularRange& a, const CircularRange& b) {
     return cover(m);
 }
 
-// The samples of a line of n that analysis outputs `out` (pairs) read.
-CircularRange analysis_reads(const CircularRange& out, int n, int F) {
-    const int padded = n + n % 2;
-    std::vector<char> m(std::size_t(n), 0);
+// The inputs (of `inputs`) that the table's outputs in `out` read.
+CircularRange reads(const LineGather& g, const CircularRange& out, int inputs) {
+    std::vector<char> m(std::size_t(inputs), 0);
     for (int i = 0; i < out.length; ++i) {
-        const int o = mod(out.start + i, out.n);
-        for (int j = 0; j < F; ++j) m[std::size_t(std::min(mod(2 * o + F / 2 - j, padded), n - 1))] = 1;
+        const std::size_t o = std::size_t(mod(out.start + i, out.n)) * std::size_t(g.taps);
+        for (int t = 0; t < g.taps; ++t) m[std::size_t(g.index[o + std::size_t(t)])] = 1;
     }
     return cover(m);
 }
 
+// The samples of a line of n that analysis outputs `out` (pairs) read.
+CircularRange analysis_reads(const CircularRange& out, int n, const FilterBank& fb) {
+    return reads(periodization_analysis(fb.dec_lo, fb.length, n), out, n);
+}
+
 // The coefficients (of a band of `pairs`) that synthesis outputs `out` read.
-CircularRange synthesis_reads(const CircularRange& out, int pairs, int F) {
-    const int half = F / 2, start = F / 4, shift = half % 2 == 0 ? 1 : 0;
-    std::vector<char> m(std::size_t(pairs), 0);
-    for (int i = 0; i < out.length; ++i) {
-        const int q = mod(mod(out.start + i, out.n) - shift, 2 * pairs), c = q / 2;
-        for (int j = 0; j < half; ++j) m[std::size_t(mod(c + start - j, pairs))] = 1;
-    }
-    return cover(m);
+CircularRange synthesis_reads(const CircularRange& out, int pairs, const FilterBank& fb) {
+    return reads(periodization_synthesis(fb.rec_lo, fb.length, pairs), out, pairs);
+}
+
+// Output o of table g, its inputs read through at(i).
+template <class At>
+double gathered(const LineGather& g, int o, At at) {
+    double v = 0;
+    const std::size_t first = std::size_t(o) * std::size_t(g.taps);
+    for (std::size_t t = first; t < first + std::size_t(g.taps); ++t) v += g.weight[t] * at(g.index[t]);
+    return v;
 }
 
 template <class F>
@@ -130,9 +138,10 @@ double SparseWaveletPlan::work_fraction(int frames, int channels) const {
 SparseWaveletPlan plan_sparse_wavelet(const FusionSpec& spec, int height, int width, RangeRect output) {
     if (spec.method != Method::Wavelet || spec.mode != WaveletMode::Periodization)
         throw std::invalid_argument("plan_sparse_wavelet: periodization wavelets only");
-    const int F = filter_bank(spec.wavelet).length, L = spec.effective_levels();
+    const FilterBank& fb = filter_bank(spec.wavelet);
+    const int L = spec.effective_levels();
     SparseWaveletPlan plan;
-    plan.filter_length = F;
+    plan.filter_length = fb.length;
     for (int l = 0, h = height, w = width; l < L; ++l, h = (h + 1) / 2, w = (w + 1) / 2)
         plan.levels.push_back({h, w, (h + 1) / 2, (w + 1) / 2, {}, {}, {}, {}});
     // Inverse, from the output up to the deepest level: what each pass computes.
@@ -141,8 +150,8 @@ SparseWaveletPlan plan_sparse_wavelet(const FusionSpec& spec, int height, int wi
     for (int l = 0; l < L; ++l) {
         SparseWaveletLevel& lv = plan.levels[std::size_t(l)];
         lv.inverse_rows = need;
-        lv.inverse_cols = {need.rows, synthesis_reads(need.cols, lv.pair_cols, F)};
-        fused[std::size_t(l)] = {synthesis_reads(need.rows, lv.pair_rows, F), lv.inverse_cols.cols};
+        lv.inverse_cols = {need.rows, synthesis_reads(need.cols, lv.pair_cols, fb)};
+        fused[std::size_t(l)] = {synthesis_reads(need.rows, lv.pair_rows, fb), lv.inverse_cols.cols};
         need = fused[std::size_t(l)];  // its approximation is A_{l+1}, level l + 1's inverse output
     }
     // Forward, from the deepest level down: each level's pairs cover its own
@@ -153,8 +162,8 @@ SparseWaveletPlan plan_sparse_wavelet(const FusionSpec& spec, int height, int wi
         RangeRect pairs = fused[std::size_t(l)];
         if (l < L - 1) pairs = {united(pairs.rows, below_reads.rows), united(pairs.cols, below_reads.cols)};
         lv.forward_cols = pairs;
-        lv.forward_rows = {analysis_reads(pairs.rows, lv.height, F), pairs.cols};
-        below_reads = {lv.forward_rows.rows, analysis_reads(pairs.cols, lv.width, F)};
+        lv.forward_rows = {analysis_reads(pairs.rows, lv.height, fb), pairs.cols};
+        below_reads = {lv.forward_rows.rows, analysis_reads(pairs.cols, lv.width, fb)};
     }
     plan.input = below_reads;
     return plan;
@@ -162,42 +171,35 @@ SparseWaveletPlan plan_sparse_wavelet(const FusionSpec& spec, int height, int wi
 
 Plane fuse_wavelet_sparse(std::span<const Plane> frames, const FusionSpec& spec, const SparseWaveletPlan& plan) {
     const FilterBank& fb = filter_bank(spec.wavelet);
-    const int F = fb.length, half = F / 2, start = F / 4, shift = half % 2 == 0 ? 1 : 0;
-    const int L = int(plan.levels.size()), K = int(frames.size());
+    const int F = fb.length, L = int(plan.levels.size()), K = int(frames.size());
     // Forward: per level and frame, rows then columns, only inside the plan.
     std::vector<Plane> approx(frames.begin(), frames.end());
     std::vector<Plane> fused_blocks;  // per level: 2 pair_rows x 2 pair_cols, [lo | hi] both ways
     for (int l = 0; l < L; ++l) {
         const SparseWaveletLevel& lv = plan.levels[std::size_t(l)];
         const int n_rows = lv.height, n_cols = lv.width, pr = lv.pair_rows, pc = lv.pair_cols;
+        const LineGather row_lo = periodization_analysis(fb.dec_lo, F, n_cols),
+                         row_hi = periodization_analysis(fb.dec_hi, F, n_cols),
+                         col_lo = periodization_analysis(fb.dec_lo, F, n_rows),
+                         col_hi = periodization_analysis(fb.dec_hi, F, n_rows);
         std::vector<Plane> blocks;
         for (int k = 0; k < K; ++k) {
             const Plane& a = approx[std::size_t(k)];
             Plane t = nan_plane(n_rows, 2 * pc);
             each(lv.forward_rows.rows, [&](int r) {
+                const auto sample = [&](int x) { return a.at(r, x); };
                 each(lv.forward_rows.cols, [&](int o) {
-                    double lo = 0, hi = 0;
-                    for (int j = 0; j < F; ++j) {
-                        const double x = a.at(r, std::min(mod(2 * o + F / 2 - j, n_cols + n_cols % 2), n_cols - 1));
-                        lo += fb.dec_lo[std::size_t(j)] * x;
-                        hi += fb.dec_hi[std::size_t(j)] * x;
-                    }
-                    t.at(r, o) = lo;
-                    t.at(r, pc + o) = hi;
+                    t.at(r, o) = gathered(row_lo, o, sample);
+                    t.at(r, pc + o) = gathered(row_hi, o, sample);
                 });
             });
             Plane d = nan_plane(2 * pr, 2 * pc);
             each(lv.forward_cols.rows, [&](int o) {
                 each(lv.forward_cols.cols, [&](int oc) {
                     for (int c : {oc, pc + oc}) {
-                        double lo = 0, hi = 0;
-                        for (int j = 0; j < F; ++j) {
-                            const double x = t.at(std::min(mod(2 * o + F / 2 - j, n_rows + n_rows % 2), n_rows - 1), c);
-                            lo += fb.dec_lo[std::size_t(j)] * x;
-                            hi += fb.dec_hi[std::size_t(j)] * x;
-                        }
-                        d.at(o, c) = lo;
-                        d.at(pr + o, c) = hi;
+                        const auto sample = [&](int y) { return t.at(y, c); };
+                        d.at(o, c) = gathered(col_lo, o, sample);
+                        d.at(pr + o, c) = gathered(col_hi, o, sample);
                     }
                 });
             });
@@ -237,30 +239,23 @@ Plane fuse_wavelet_sparse(std::span<const Plane> frames, const FusionSpec& spec,
         if (l < L - 1)
             for (int y = 0; y < pr; ++y)
                 for (int x = 0; x < pc; ++x) f.at(y, x) = a.at(y, x);
+        const LineGather col_lo = periodization_synthesis(fb.rec_lo, F, pr),
+                         col_hi = periodization_synthesis(fb.rec_hi, F, pr),
+                         row_lo = periodization_synthesis(fb.rec_lo, F, pc),
+                         row_hi = periodization_synthesis(fb.rec_hi, F, pc);
         Plane u = nan_plane(lv.height, 2 * pc);
         each(lv.inverse_cols.rows, [&](int n) {
-            const int q = mod(n - shift, 2 * pr), m = q / 2, p = q % 2;
             each(lv.inverse_cols.cols, [&](int oc) {
-                for (int c : {oc, pc + oc}) {
-                    double v = 0;
-                    for (int j = 0; j < half; ++j) {
-                        const int i = mod(m + start - j, pr);
-                        v += fb.rec_lo[std::size_t(2 * j + p)] * f.at(i, c) + fb.rec_hi[std::size_t(2 * j + p)] * f.at(pr + i, c);
-                    }
-                    u.at(n, c) = v;
-                }
+                for (int c : {oc, pc + oc})
+                    u.at(n, c) = gathered(col_lo, n, [&](int i) { return f.at(i, c); }) +
+                                 gathered(col_hi, n, [&](int i) { return f.at(pr + i, c); });
             });
         });
         Plane out = nan_plane(lv.height, lv.width);
         each(lv.inverse_rows.rows, [&](int r) {
             each(lv.inverse_rows.cols, [&](int n) {
-                const int q = mod(n - shift, 2 * pc), m = q / 2, p = q % 2;
-                double v = 0;
-                for (int j = 0; j < half; ++j) {
-                    const int i = mod(m + start - j, pc);
-                    v += fb.rec_lo[std::size_t(2 * j + p)] * u.at(r, i) + fb.rec_hi[std::size_t(2 * j + p)] * u.at(r, pc + i);
-                }
-                out.at(r, n) = v;
+                out.at(r, n) = gathered(row_lo, n, [&](int i) { return u.at(r, i); }) +
+                               gathered(row_hi, n, [&](int i) { return u.at(r, pc + i); });
             });
         });
         a = std::move(out);

@@ -1,6 +1,7 @@
 // core/wavelet_axis.hpp - one DWT level along one axis of a plane, per mode:
 // the building block wavedec2/waverec2 compose (internal to src/core).
 #pragma once
+#include "core/line_gather.hpp"
 #include "core/plane.hpp"
 #include "core/wavelet.hpp"
 
@@ -10,6 +11,13 @@ namespace vkfuse::core {
 struct Bands {
     Plane lo, hi;
 };
+
+// pywt's periodization analysis (one filter of `length` taps over a line of
+// n samples: ceil(n/2) outputs) and synthesis (one band of n coefficients to
+// 2n samples) as gather tables, with core/wavelet.hpp's index formulas. The
+// index tables depend on the filter's length only, not on its taps.
+LineGather periodization_analysis(const std::array<double, 10>& filter, int length, int n);
+LineGather periodization_synthesis(const std::array<double, 10>& filter, int length, int n);
 
 // Periodization: lo and hi both ceil(n/2) long along the axis; merge needs equal
 // lengths N and returns 2N.

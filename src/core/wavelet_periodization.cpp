@@ -13,8 +13,12 @@ namespace {
 
 int mod(int a, int m) { return ((a % m) + m) % m; }
 
+int axis_length(const Plane& p, int axis) { return axis == 0 ? p.height : p.width; }
+
+}  // namespace
+
 // a[o] or d[o] = sum_j filter[j] * xe(mod(2o + F/2 - j, Np)), xe(t) = x[min(t, n-1)].
-LineGather analysis(const std::array<double, 10>& filter, int length, int n) {
+LineGather periodization_analysis(const std::array<double, 10>& filter, int length, int n) {
     const int padded = n + n % 2;  // odd lines repeat their last sample once
     LineGather g{(n + 1) / 2, length, {}, {}};
     for (int o = 0; o < g.outputs; ++o)
@@ -26,7 +30,7 @@ LineGather analysis(const std::array<double, 10>& filter, int length, int n) {
 }
 
 // y[i] += sum_j filter[2j + p] * c[mod(m + F/4 - j, n)], q = mod(i - s, 2n), m = q / 2, p = q % 2.
-LineGather synthesis(const std::array<double, 10>& filter, int length, int n) {
+LineGather periodization_synthesis(const std::array<double, 10>& filter, int length, int n) {
     const int half = length / 2, start = length / 4;
     const int shift = half % 2 == 0 ? 1 : 0;  // pywt's one-sample output shift (db2)
     LineGather g{2 * n, half, {}, {}};
@@ -40,17 +44,13 @@ LineGather synthesis(const std::array<double, 10>& filter, int length, int n) {
     return g;
 }
 
-int axis_length(const Plane& p, int axis) { return axis == 0 ? p.height : p.width; }
-
-}  // namespace
-
 void dwt_periodization(std::span<const double> x, const FilterBank& fb, std::span<double> approx,
                        std::span<double> detail) {
     const int n = int(x.size());
     if (n < 1 || approx.size() != std::size_t(n + 1) / 2 || detail.size() != approx.size())
         throw std::invalid_argument("dwt_periodization: bad lengths");
-    gather_line(analysis(fb.dec_lo, fb.length, n), x, approx, false);
-    gather_line(analysis(fb.dec_hi, fb.length, n), x, detail, false);
+    gather_line(periodization_analysis(fb.dec_lo, fb.length, n), x, approx, false);
+    gather_line(periodization_analysis(fb.dec_hi, fb.length, n), x, detail, false);
 }
 
 void idwt_periodization(std::span<const double> approx, std::span<const double> detail, const FilterBank& fb,
@@ -58,22 +58,22 @@ void idwt_periodization(std::span<const double> approx, std::span<const double> 
     const int n = int(approx.size());
     if (n < 1 || int(detail.size()) != n || int(out.size()) != 2 * n)
         throw std::invalid_argument("idwt_periodization: bad lengths");
-    gather_line(synthesis(fb.rec_lo, fb.length, n), approx, out, false);
-    gather_line(synthesis(fb.rec_hi, fb.length, n), detail, out, true);
+    gather_line(periodization_synthesis(fb.rec_lo, fb.length, n), approx, out, false);
+    gather_line(periodization_synthesis(fb.rec_hi, fb.length, n), detail, out, true);
 }
 
 Bands split_axis_periodization(const Plane& p, int axis, const FilterBank& fb) {
     const int n = axis_length(p, axis);
-    return {gather_axis(p, axis, analysis(fb.dec_lo, fb.length, n)),
-            gather_axis(p, axis, analysis(fb.dec_hi, fb.length, n))};
+    return {gather_axis(p, axis, periodization_analysis(fb.dec_lo, fb.length, n)),
+            gather_axis(p, axis, periodization_analysis(fb.dec_hi, fb.length, n))};
 }
 
 Plane merge_axis_periodization(const Plane& lo, const Plane& hi, int axis, const FilterBank& fb) {
     const int n = axis_length(lo, axis);
     if (!lo.same_shape(hi))
         throw std::logic_error("waverec2: periodization bands differ in shape");
-    Plane out = gather_axis(lo, axis, synthesis(fb.rec_lo, fb.length, n));
-    gather_axis_add(hi, axis, synthesis(fb.rec_hi, fb.length, n), out);
+    Plane out = gather_axis(lo, axis, periodization_synthesis(fb.rec_lo, fb.length, n));
+    gather_axis_add(hi, axis, periodization_synthesis(fb.rec_hi, fb.length, n), out);
     return out;
 }
 
