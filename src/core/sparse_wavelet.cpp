@@ -116,6 +116,12 @@ std::optional<SparseChoice> choose_sparse(const FusionSpec& spec, int H, int W, 
     return choice;
 }
 
+SkipRegion fused_region(const std::optional<SparseChoice>& choice, int height, int width) {
+    if (!choice) return {0, height, 0, width};
+    const RangeRect& r = choice->rect;
+    return {r.rows.start, r.rows.length, r.cols.start, r.cols.length};
+}
+
 double SparseWaveletPlan::work_fraction(int frames, int channels) const {
     const int F = filter_length;
     const double forward = double(frames) * channels * 2 * F, inverse = double(channels) * F;

@@ -29,6 +29,7 @@
 
 #include "core/plane.hpp"
 #include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::core {
 
@@ -86,6 +87,9 @@ struct SparseChoice {
 };
 std::optional<SparseChoice> choose_sparse(const FusionSpec& spec, int height, int width, int frames, int channels,
                                           const std::vector<bool>& changed_tiles, int tiles_x);
+// What a changed sensor's cycle fuses: the choice's rectangle, or the whole
+// height x width frame.
+SkipRegion fused_region(const std::optional<SparseChoice>& choice, int height, int width);
 
 // The CPU twin of a tile-sparse fusion: fuse_wavelet's arithmetic, computed
 // only inside the plan's regions, NaN everywhere else. Inside the output

@@ -99,19 +99,18 @@ private:
         if (!sk.reference) throw Error(ErrorKind::InvalidArgument, "plan run: no skip reference set for sensor " + std::to_string(s));
         const std::vector<double> scores = change_scores_reference(frames, *sk.reference);
         SkipOutcome& o = outcomes_[s];
-        const auto changed = std::count_if(scores.begin(), scores.end(), [&](double v) { return !(v <= cfg_.skip.threshold); });
+        std::vector<bool> changed_tiles;
+        for (double v : scores) changed_tiles.push_back(!(v <= cfg_.skip.threshold));
+        const auto changed = std::count(changed_tiles.begin(), changed_tiles.end(), true);
         o.idle = changed == 0;
         o.reused = !o.idle && sk.kept && still(s, frames);
         o.fused_region = o.idle || o.reused ? SkipRegion{} : SkipRegion{0, cfg_.height, 0, cfg_.width};
-        if (!o.idle && !o.reused && cfg_.skip.policy == SkipPolicy::Tiles) {
-            std::vector<bool> mask;
-            for (double v : scores) mask.push_back(!(v <= cfg_.skip.threshold));
-            if (const auto choice = core::choose_sparse(cfg_.fusion, cfg_.height, cfg_.width, cfg_.frames,
-                                                        cfg_.channels, mask, skip_tiles_x(cfg_.width)))
-                o.fused_region = {choice->rect.rows.start, choice->rect.rows.length, choice->rect.cols.start,
-                                  choice->rect.cols.length};
-        }
-        o.fused_fraction = double(o.fused_region.height) * o.fused_region.width / (double(cfg_.height) * cfg_.width);
+        if (!o.idle && !o.reused && cfg_.skip.policy == SkipPolicy::Tiles)
+            o.fused_region = core::fused_region(core::choose_sparse(cfg_.fusion, cfg_.height, cfg_.width, cfg_.frames,
+                                                                    cfg_.channels, changed_tiles,
+                                                                    skip_tiles_x(cfg_.width)),
+                                                cfg_.height, cfg_.width);
+        o.fused_fraction = o.fused_region.share(cfg_.height, cfg_.width);
         o.changed_fraction = double(changed) / double(scores.size());
         o.score = *std::max_element(scores.begin(), scores.end());
         if (o.reused) {

@@ -126,11 +126,13 @@ std::vector<int> SkipState::detect() {
     if (sparse_) sparse_->begin_run();
     for (int s = 0; s < cfg_.sensors; ++s) {
         std::size_t changed = 0;
+        std::vector<bool> changed_tiles(tiles);
         float top = 0;
         for (std::size_t t = 0; t < tiles; ++t) {
             const float v = scores[std::size_t(s) * tiles + t];
             // A NaN score (NaN never reaches an 8-bit plan) would count as changed.
-            if (!(v <= cfg_.skip.threshold)) ++changed;
+            changed_tiles[t] = !(v <= cfg_.skip.threshold);
+            changed += changed_tiles[t];
             top = std::max(top, v);
         }
         SkipOutcome& o = outcomes_[std::size_t(s)];
@@ -143,13 +145,12 @@ std::vector<int> SkipState::detect() {
         const bool skipped = o.idle || o.reused;
         o.fused_region = skipped ? SkipRegion{} : SkipRegion{0, cfg_.height, 0, cfg_.width};
         if (!skipped && sparse_) {
-            std::vector<bool> mask(tiles);
-            for (std::size_t t = 0; t < tiles; ++t) mask[t] = !(scores[std::size_t(s) * tiles + t] <= cfg_.skip.threshold);
-            o.fused_region = sparse_->write(int(fused.size()), s,
-                                            core::choose_sparse(cfg_.fusion, cfg_.height, cfg_.width, cfg_.frames,
-                                                                cfg_.channels, mask, int(tiles_x_)));
+            const auto choice = core::choose_sparse(cfg_.fusion, cfg_.height, cfg_.width, cfg_.frames, cfg_.channels,
+                                                    changed_tiles, int(tiles_x_));
+            sparse_->write(int(fused.size()), s, choice);
+            o.fused_region = core::fused_region(choice, cfg_.height, cfg_.width);
         }
-        o.fused_fraction = double(o.fused_region.height) * o.fused_region.width / (double(cfg_.height) * cfg_.width);
+        o.fused_fraction = o.fused_region.share(cfg_.height, cfg_.width);
         o.changed_fraction = double(changed) / double(tiles);
         o.score = top;
         slot_[std::size_t(s)] = skipped ? std::nullopt : std::optional<int>(int(fused.size()));

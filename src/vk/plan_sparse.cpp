@@ -38,11 +38,9 @@ bool sparse_capable(const PlanConfig& cfg) {
 }
 
 SparseRegions::SparseRegions(Context::Impl& ctx, const PlanConfig& cfg) : cfg_(cfg) {
-    // The shapes of full fusion: a plan of the whole frame.
-    shapes_ = core::plan_sparse_wavelet(cfg.fusion, cfg.height, cfg.width,
-                                        {whole(cfg.height), whole(cfg.width)})
-                  .levels;
-    const std::size_t uses = 4 * shapes_.size() + 1;  // four passes a level, and the compose
+    whole_.rect = {whole(cfg.height), whole(cfg.width)};
+    whole_.plan = core::plan_sparse_wavelet(cfg.fusion, cfg.height, cfg.width, whole_.rect);
+    const std::size_t uses = 4 * whole_.plan.levels.size() + 1;  // four passes a level, and the compose
     regions_ = Buffer(ctx, uses * std::size_t(cfg.sensors) * kRecord * 4, MemoryUse::Upload);
     backgrounds_ = Buffer(ctx, std::size_t(cfg.sensors) * std::size_t(cfg.channels) * std::size_t(cfg.height) *
                                    std::size_t(cfg.width) * 4,
@@ -87,13 +85,10 @@ void SparseRegions::write_record(int use, int slot, const std::uint32_t (&record
     std::memcpy(at, record, sizeof record);
 }
 
-SkipRegion SparseRegions::write(int slot, int sensor, const std::optional<core::SparseChoice>& choice) {
-    if (!choice) {
-        write_full(slot, sensor);
-        return {0, cfg_.height, 0, cfg_.width};
-    }
-    const core::SparseWaveletPlan& plan = choice->plan;
-    const core::RangeRect& rect = choice->rect;
+void SparseRegions::write(int slot, int sensor, const std::optional<core::SparseChoice>& choice) {
+    // Fused whole: the records of a plan of the whole frame.
+    const core::SparseChoice& chosen = choice ? *choice : whole_;
+    const core::SparseWaveletPlan& plan = chosen.plan;
     const int shift = (plan.filter_length / 2) % 2 == 0 ? 1 : 0;
     const auto u32 = [](int v) { return std::uint32_t(v); };
     for (std::size_t u = 0; u < uses_.size(); ++u) {
@@ -121,38 +116,12 @@ SkipRegion SparseRegions::write(int slot, int sensor, const std::optional<core::
                 blocks = blocks_of(coefficients_of(lv.inverse_rows.cols, lv.pair_cols, shift), use.block);
                 break;
             case SparsePass::Compose:
-                lines = rect.rows;
-                blocks = rect.cols;
+                lines = chosen.rect.rows;
+                blocks = chosen.rect.cols;
                 break;
         }
         const std::uint32_t record[8] = {u32(lines.start), u32(lines.length), u32(blocks.start), u32(blocks.length),
-                                         u32(half),        u32(sensor),       0,                 0};
-        write_record(int(u), slot, record);
-    }
-    return {rect.rows.start, rect.rows.length, rect.cols.start, rect.cols.length};
-}
-
-void SparseRegions::write_full(int slot, int sensor) {
-    const auto u32 = [](int v) { return std::uint32_t(v); };
-    const auto nb = [](int n, int block) { return std::uint32_t((n + block - 1) / block); };
-    for (std::size_t u = 0; u < uses_.size(); ++u) {
-        const SparseUse& use = uses_[u];
-        const core::SparseWaveletLevel& lv = shapes_[std::size_t(use.level)];
-        std::uint32_t record[8] = {0, 0, 0, 0, 0, u32(sensor), 0, 0};
-        switch (use.pass) {
-            case SparsePass::ForwardRows:
-            case SparsePass::InverseRows:
-                record[1] = u32(lv.height);
-                record[3] = nb(lv.pair_cols, use.block);
-                break;
-            case SparsePass::ForwardCols:
-            case SparsePass::InverseCols:
-                record[1] = u32(lv.pair_cols);
-                record[3] = nb(lv.pair_rows, use.block);
-                record[4] = u32(lv.pair_cols);
-                break;
-            case SparsePass::Compose: record[6] = 1; break;
-        }
+                                         u32(half),        u32(sensor),       choice ? 0u : 1u,  0};
         write_record(int(u), slot, record);
     }
 }

@@ -67,23 +67,21 @@ public:
     // Before a run's write()s: no slot written yet.
     void begin_run();
     // Slot `slot` (sensor `sensor`) this run: fused whole (no choice), or only
-    // what the chosen rectangle needs (core::choose_sparse). Returns the
-    // rectangle fused (the whole frame when fused whole).
-    SkipRegion write(int slot, int sensor, const std::optional<core::SparseChoice>& choice);
+    // what the chosen rectangle needs (core::choose_sparse).
+    void write(int slot, int sensor, const std::optional<core::SparseChoice>& choice);
     // Each region-aware dispatch's grid cut to the largest of this run's
     // records (the rest of its invocations would only leave).
     void shrink(VkDispatchIndirectCommand* args) const;
 
 private:
     PlanConfig cfg_;
-    std::vector<core::SparseWaveletLevel> shapes_;  // per level: the sizes, for full records
+    core::SparseChoice whole_;  // the plan of the whole frame: a slot fused whole
     std::vector<SparseUse> uses_;
     std::vector<std::array<std::uint32_t, 2>> extent_;  // per use, this run: most lines, most blocks
     Buffer regions_;      // [use][slot][8] uints, host-written
     Buffer backgrounds_;  // S*C planes of H x W, float32
 
     void write_record(int use, int slot, const std::uint32_t (&record)[8]);  // and its extent
-    void write_full(int slot, int sensor);
 };
 
 }  // namespace vkfuse::vk

@@ -55,6 +55,10 @@ struct SkipRegion {
     bool contains(int y, int x, int frame_height, int frame_width) const {
         return (y - top + frame_height) % frame_height < height && (x - left + frame_width) % frame_width < width;
     }
+    // Its share of the frame (SkipOutcome::fused_fraction).
+    double share(int frame_height, int frame_width) const {
+        return double(height) * double(width) / (double(frame_height) * double(frame_width));
+    }
 };
 
 // How one sensor's cycle was treated (Plan::skip_outcome, SensorCycle::skip).
