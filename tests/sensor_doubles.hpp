@@ -1,11 +1,15 @@
 // sensor_doubles.hpp - sensors wrapped for tests: one that logs the simulator's
-// ground truth of every frame it hands out, one that fails on cue.
+// ground truth of every frame it hands out, one that fails on cue, one that
+// is unplugged and plugged back on cue.
 #pragma once
 #include <condition_variable>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
+
+#include "vkfuse/core/error.hpp"
 
 #include "vkfuse/sensor/sim_digit.hpp"
 
@@ -74,6 +78,42 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable changed_;
     bool stalled_ = false, released_ = false;
+};
+
+// Forwards to a sensor, except between unplug() and replug(): then grab()
+// waits a little, as a real one looks for its device, and throws
+// Error(Unplugged) naming the serial.
+class UnpluggableSensor : public Sensor {
+public:
+    explicit UnpluggableSensor(std::shared_ptr<Sensor> inner) : inner_(std::move(inner)) {}
+
+    SensorInfo info() const override { return inner_->info(); }
+    void set_illumination(const Illumination& s) override { inner_->set_illumination(s); }
+    Frame grab() override {
+        {
+            std::lock_guard lock(mutex_);
+            if (!unplugged_) return inner_->grab();
+            ++refused_;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        throw Error(ErrorKind::Unplugged, info().serial + ": unplugged (test)");
+    }
+    void unplug() { set(true); }
+    void replug() { set(false); }
+    int refused() const {
+        std::lock_guard lock(mutex_);
+        return refused_;
+    }
+
+private:
+    void set(bool unplugged) {
+        std::lock_guard lock(mutex_);
+        unplugged_ = unplugged;
+    }
+    std::shared_ptr<Sensor> inner_;
+    mutable std::mutex mutex_;
+    bool unplugged_ = false;
+    int refused_ = 0;
 };
 
 }  // namespace vkfuse::test

@@ -29,9 +29,10 @@ TEST(CliDevices, EachDigitIsOneJsonLine) {
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out,
-              "{\"serial\": \"\", \"usb\": \"3-3\", \"firmware\": \"1.00\", \"bootloader\": true, \"video_nodes\": []}\n"
+              "{\"serial\": \"\", \"usb\": \"3-3\", \"firmware\": \"1.00\", \"bootloader\": true, \"video_nodes\": [], "
+              "\"modes\": []}\n"
               "{\"serial\": \"D20417\", \"usb\": \"3-2\", \"firmware\": \"2.00\", \"bootloader\": false, "
-              "\"video_nodes\": [\"/dev/video90\"]}\n");
+              "\"video_nodes\": [\"/dev/video90\"], \"modes\": []}\n");
 }
 
 TEST(CliDevices, ThisMachineIsListedWithoutError) {

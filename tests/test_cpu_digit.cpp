@@ -10,6 +10,7 @@
 #include "fake_sysfs.hpp"
 #include "temp_dir.hpp"
 #include "vkfuse/sensor/digit.hpp"
+#include "vkfuse/sensor/digit_sensor.hpp"
 
 namespace vkfuse::test {
 namespace {
@@ -89,6 +90,43 @@ TEST(Digit, DiscoveryFindsDigitsTheirNodesAndBootloaders) {
     const std::vector<DigitDevice> by_index = find_digits(where);
     ASSERT_EQ(by_index.size(), 3u);
     EXPECT_EQ(by_index[2].video_nodes, std::vector<std::string>{tmp.file("no-dev/video2")});
+}
+
+// Opening a DIGIT that is not there fails at once with one line naming it;
+// the streaming itself is tested against an emulated DIGIT (ctest -L hil).
+TEST(Digit, OpeningWhatIsNotThereNamesIt) {
+    TempDir tmp;
+    FakeSysfs sys(tmp.file("sys"));
+    sys.add_usb("1-1", "2833", "0209", "D20002", "0200");
+    sys.add_video("1-1", "video2", 0);
+    sys.add_usb("1-3", "0403", "0fde", "", "0100");
+    DigitOptions o;
+    o.where.sysfs = sys.root();
+    o.where.dev = tmp.file("dev");  // the node the sysfs tree names does not exist
+    o.device = "D99999";
+    expect_error([&] { DigitSensor s(o); }, "D99999", ErrorKind::InvalidArgument,
+                 "no DIGIT with this serial is plugged in (found D20002; one is in its bootloader)");
+    o.device = "/dev/video7";
+    expect_error([&] { DigitSensor s(o); }, "/dev/video7", ErrorKind::InvalidArgument,
+                 "not the capture node of a DIGIT (USB 2833:0209)");
+    o.device = "D20002";
+    expect_error([&] { DigitSensor s(o); }, "D20002", ErrorKind::Unplugged,
+                 "cannot open " + tmp.file("dev/video2"));
+    o.device = "";
+    expect_error([&] { DigitSensor s(o); }, "DIGIT", ErrorKind::InvalidArgument, "no serial or video node");
+    o.device = "D20002";
+    o.timeout_s = 0;
+    expect_error([&] { DigitSensor s(o); }, "D20002", ErrorKind::InvalidArgument, "timeout must be > 0");
+}
+
+TEST(Digit, ModesAndEncodingsReadAndPrint) {
+    EXPECT_EQ(DigitMode{}.to_string(), "yuyv 320x240@60");
+    EXPECT_EQ((DigitMode{640, 480, 15, DigitEncoding::Mjpeg}.to_string()), "mjpeg 640x480@15");
+    EXPECT_EQ(parse_digit_encoding("mjpeg"), DigitEncoding::Mjpeg);
+    EXPECT_EQ(parse_digit_encoding("yuyv"), DigitEncoding::Yuyv);
+    expect_error([] { parse_digit_encoding("h264"); }, "--encoding", ErrorKind::InvalidArgument,
+                 "unknown encoding 'h264' (yuyv or mjpeg)");
+    EXPECT_TRUE(digit_modes("/nonexistent/video0").empty());
 }
 
 TEST(Digit, NoUsbNoDigits) {

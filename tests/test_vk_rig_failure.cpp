@@ -59,6 +59,44 @@ TEST_F(VulkanRigFailure, ThrowingAndStallingSensorsDoNotStopTheOthers) {
     staller->release();
 }
 
+TEST_F(VulkanRigFailure, AnUnpluggedSensorFailsWhileGoneAndRejoinsWhenBack) {
+    auto good = sim_sensor(1, 0.03), other = sim_sensor(2, 0.03);
+    auto cable = std::make_shared<UnpluggableSensor>(other.logged);
+    Rig rig(&ctx(), two_settings(2.0), {{good.logged, good.clock}, {cable, other.clock}});
+    rig.start();
+    enum class Phase { Before, Gone, Back } phase = Phase::Before;
+    int failed_cycles = 0, ok_after = 0;
+    for (int c = 0; c < 200 && ok_after < 3; ++c) {
+        const CycleResult r = rig.next();
+        ASSERT_EQ(r.sensors[0].status, SensorStatus::Ok) << "cycle " << c << ": " << r.sensors[0].error;
+        const SensorCycle& s = r.sensors[1];
+        if (phase == Phase::Before) {
+            ASSERT_EQ(s.status, SensorStatus::Ok) << s.error;
+            if (c == 2) {
+                cable->unplug();
+                phase = Phase::Gone;
+            }
+        } else if (phase == Phase::Gone) {
+            if (s.status == SensorStatus::Failed) {
+                EXPECT_EQ(s.error, "SIM-0002: unplugged (test)");
+                EXPECT_TRUE(s.frames.empty());
+                if (++failed_cycles == 3) {
+                    cable->replug();
+                    phase = Phase::Back;
+                }
+            }
+        } else if (s.status == SensorStatus::Ok) {
+            ++ok_after;
+            EXPECT_EQ(s.frames.size(), 2u);
+        }
+        EXPECT_EQ(rig.submits(), std::uint64_t(c + 1));
+    }
+    EXPECT_EQ(failed_cycles, 3);
+    EXPECT_GT(cable->refused(), 0);
+    EXPECT_EQ(ok_after, 3) << "the replugged sensor never rejoined";
+    EXPECT_FALSE(rig.all_failed());
+}
+
 TEST_F(VulkanRigFailure, SensorFailingAtStartupIsReportedEveryCycle) {
     auto good = sim_sensor(1, 0.0), bad = sim_sensor(2, 0.0);
     auto dead = std::make_shared<FaultySensor>(bad.logged, FaultySensor::Fault::Throw, 0);

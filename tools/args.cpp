@@ -39,12 +39,12 @@ Args Args::parse(const CommandSpec& spec, std::span<const std::string> argv) {
         if (!option) args.usage_error("unknown option " + name);
         if (option->is_flag()) {
             if (eq != std::string::npos) args.usage_error("option " + name + " takes no value");
-            args.values_[std::string(option->name)] = "";
+            args.values_[std::string(option->name)].push_back("");
             continue;
         }
         if (eq == std::string::npos && i + 1 == argv.size())
             args.usage_error("option " + name + " needs a value " + std::string(option->value));
-        args.values_[std::string(option->name)] = eq == std::string::npos ? argv[++i] : arg.substr(eq + 1);
+        args.values_[std::string(option->name)].push_back(eq == std::string::npos ? argv[++i] : arg.substr(eq + 1));
     }
     return args;
 }
@@ -52,7 +52,12 @@ Args Args::parse(const CommandSpec& spec, std::span<const std::string> argv) {
 std::optional<std::string> Args::value(std::string_view name) const {
     auto it = values_.find(name);
     if (it == values_.end()) return std::nullopt;
-    return it->second;
+    return it->second.back();
+}
+
+std::vector<std::string> Args::values(std::string_view name) const {
+    auto it = values_.find(name);
+    return it == values_.end() ? std::vector<std::string>{} : it->second;
 }
 
 std::string Args::required(std::string_view name) const {

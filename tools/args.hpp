@@ -39,6 +39,9 @@ public:
     static Args parse(const CommandSpec& spec, std::span<const std::string> argv);
 
     std::optional<std::string> value(std::string_view name) const;
+    // Every value of an option given more than once, in order (for
+    // repeatable options such as `run --sensor`).
+    std::vector<std::string> values(std::string_view name) const;
     // Whether a flag (or any option) was given.
     bool has(std::string_view name) const { return value(name).has_value(); }
     // The value of a required option; throws "<command>: missing -o OUT (see ...)" when absent.
@@ -51,7 +54,7 @@ private:
     explicit Args(const CommandSpec& spec) : spec_(&spec) {}
 
     const CommandSpec* spec_;
-    std::map<std::string, std::string, std::less<>> values_;
+    std::map<std::string, std::vector<std::string>, std::less<>> values_;
     std::vector<std::string> operands_;
 };
 

@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "json.hpp"
 #include "vkfuse/sensor/digit.hpp"
+#include "vkfuse/sensor/digit_sensor.hpp"
 
 namespace vkfuse::cli {
 namespace {
@@ -19,7 +20,8 @@ constexpr CommandSpec kSpec{
     "vkfuse devices [--sysfs DIR]",
     "Prints one line per DIGIT found on the USB bus, one JSON object each:\n"
     "  {\"serial\": S, \"usb\": PORT, \"firmware\": \"2.00\", \"bootloader\": false,\n"
-    "   \"video_nodes\": [\"/dev/video0\"]}\n"
+    "   \"video_nodes\": [\"/dev/video0\"], \"modes\": [\"yuyv 320x240@60\", ...]}\n"
+    "(modes: what its first node streams; empty when it cannot be opened).\n"
     "A DIGIT in its bootloader (USB 0403:0fde) is listed with \"bootloader\": true\n"
     "and no nodes: it is not a camera until its firmware is flashed. With no DIGIT\n"
     "plugged in it says so on stderr and exits 0.",
@@ -30,9 +32,13 @@ constexpr CommandSpec kSpec{
 std::string device_line(const DigitDevice& d) {
     std::string nodes;
     for (const std::string& n : d.video_nodes) nodes += (nodes.empty() ? "" : ", ") + json_string(n);
+    std::string modes;
+    if (!d.video_nodes.empty())
+        for (const DigitMode& m : digit_modes(d.video_nodes.front()))
+            modes += (modes.empty() ? "" : ", ") + json_string(m.to_string());
     return "{\"serial\": " + json_string(d.serial) + ", \"usb\": " + json_string(d.usb_port) +
            ", \"firmware\": " + json_string(d.firmware.to_string()) +
-           ", \"bootloader\": " + (d.bootloader ? "true" : "false") + ", \"video_nodes\": [" + nodes + "]}";
+           ", \"bootloader\": " + (d.bootloader ? "true" : "false") + ", \"video_nodes\": [" + nodes + "], \"modes\": [" + modes + "]}";
 }
 
 int run(const Args& args) {

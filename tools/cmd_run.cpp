@@ -23,6 +23,9 @@ namespace vkfuse::cli {
 namespace {
 
 constexpr OptionSpec kOptions[] = {
+    {"--sensor", "", "DEV", "a real DIGIT by serial (D20001) or video node (/dev/video0); repeat for several (default: every DIGIT plugged in, else simulated ones)"},
+    {"--encoding", "", "E", "how real DIGITs stream: yuyv or mjpeg (default yuyv)"},
+    {"--simulate", "", "", "simulate DIGITs even when real ones are plugged in"},
     {"--sensors", "", "N", "simulated DIGITs, serials SIM-0001.. (default 1)"},
     {"--object", "", "NAME", "what is pressed into the gel (default coin; see below)"},
     {"--motion", "", "M", "how it moves: still, tap (pressed half of each period) or slide (default still)"},
@@ -55,12 +58,14 @@ static_assert(SkipConfig{}.threshold == 8.0, "--skip-threshold's help states the
 
 constexpr CommandSpec kSpec{
     "run",
-    "drive simulated or recorded DIGITs through an LED sequence and fuse every cycle",
+    "drive real, simulated or recorded DIGITs through an LED sequence and fuse every cycle",
     "vkfuse run [options]",
     "Each sensor cycles through the LED settings of --sequence on its own capture\n"
     "thread; every cycle takes one frame lit entirely by each setting (LED latency\n"
     "and rolling shutter are measured at start-up) and fuses all sensors with one\n"
-    "GPU submit. Without a real sensor it simulates DIGITs pressing --object\n"
+    "GPU submit. It drives the DIGITs plugged in (or those --sensor names; one\n"
+    "unplugged mid-run is reported failed each cycle until it is back), and\n"
+    "without any it says so and simulates DIGITs pressing --object\n"
     "(nothing, coin, coin-heads, coin-tails, lego, ball, screw, nut, velcro, file,\n"
     "text). A live line on stderr shows fused fps and per-stage latency; Ctrl-C\n"
     "or SIGTERM finishes the cycle in hand and writes the files. Prints a JSON\n"
@@ -115,6 +120,30 @@ void require_replay_memory(const RunOptions& o, const Dataset& dataset) {
     require_memory({(std::filesystem::path(dataset.directory) / "manifest.json").string()}, "replaying", need);
 }
 
+// Real DIGITs when named or plugged in, else simulated ones. A choice made
+// without being asked for is said in one line.
+void choose_live_sensors(Session& s, const Args& args) {
+    RunOptions& o = s.options;
+    if (!o.digits.empty()) {
+        s.sensors = digit_sensors(o, o.digits);
+    } else if (const std::vector<std::string> plugged = o.simulate ? std::vector<std::string>{} : plugged_digits();
+               !plugged.empty()) {
+        s.sensors = digit_sensors(o, plugged);
+        std::string list;
+        for (const std::string& serial : plugged) list += (list.empty() ? "" : ", ") + serial;
+        std::fprintf(stderr, "vkfuse run: using the DIGIT%s plugged in: %s (--simulate to simulate instead)\n",
+                     plugged.size() > 1 ? "s" : "", list.c_str());
+    } else {
+        s.sensors = simulated_sensors(o);
+        if (!o.simulate)
+            std::fprintf(stderr, "vkfuse run: no DIGIT found; simulating %d DIGIT%s (%s)\n", o.sensors,
+                         o.sensors > 1 ? "s" : "", s.sensors.rig.front().sensor->info().serial.c_str());
+        return;
+    }
+    o.sensors = int(s.sensors.rig.size());
+    if (!args.has("--object")) o.object = "live";  // a label only: nothing tells what touches a real gel
+}
+
 Session prepare(const Args& args) {
     Session s;
     s.options = parse_run_options(args);
@@ -129,7 +158,7 @@ Session prepare(const Args& args) {
                                                         to_string(s.options.sequence) + " recorded for " +
                                                         s.options.object);
     } else {
-        s.sensors = simulated_sensors(s.options);
+        choose_live_sensors(s, args);
     }
     return s;
 }

@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-PACKAGES=(cmake make g++ pkg-config libpng-dev libgtest-dev libvulkan-dev libvulkan1
+PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libgtest-dev libvulkan-dev libvulkan1
           mesa-vulkan-drivers vulkan-validationlayers glslang-tools)
 
 # What the bench's peers need: the Python pipelines and the OpenCV C++ one.

@@ -39,11 +39,18 @@ void check_object(const std::string& object) {
 }
 
 void check_replay_conflicts(const Args& args) {
-    for (const char* option :
-         {"--sensors", "--background-frames", "--virtual-clock", "--camera-auto", "--motion", "--motion-period",
-          "--pressing"})
+    for (const char* option : kSimulatorOptions)
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
+    for (const char* option : {"--background-frames", "--sensor", "--encoding"})
+        if (args.has(option))
+            args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
+}
+
+// --sensor names real DIGITs: nothing that only the simulator takes applies.
+void check_digit_conflicts(const Args& args) {
+    for (const char* option : kSimulatorOptions)
+        if (args.has(option)) args.usage_error(std::string(option) + " does not apply to real DIGITs (--sensor)");
 }
 
 // base, or base with the method --method names.
@@ -104,6 +111,10 @@ RunOptions parse_run_options(const Args& args) {
     RunOptions o;
     o.replay = args.value("--replay");
     if (o.replay) check_replay_conflicts(args);
+    o.digits = args.values("--sensor");
+    if (!o.digits.empty()) check_digit_conflicts(args);
+    for (const char* option : kSimulatorOptions) o.simulate = o.simulate || args.has(option);
+    if (auto v = args.value("--encoding")) o.encoding = parse_digit_encoding(*v, "--encoding");
     if (auto v = args.value("--sensors")) o.sensors = parse_positive_int("--sensors", *v);
     if (o.sensors > kMaxSimulatedSensors)
         fail("--sensors " + std::to_string(o.sensors) + ": at most " + std::to_string(kMaxSimulatedSensors));

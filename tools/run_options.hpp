@@ -9,6 +9,7 @@
 #include "vkfuse/core/metrics.hpp"
 #include "vkfuse/core/skip.hpp"
 #include "vkfuse/sensor/dataset.hpp"
+#include "vkfuse/sensor/digit_sensor.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
@@ -22,7 +23,16 @@ namespace vkfuse::cli {
 inline constexpr double kLiveTimeoutSeconds = 5.0;
 inline constexpr double kSimulatedTimeoutSeconds = 120.0;
 
+// The options that only a simulated DIGIT takes: giving one asks for the simulator.
+inline constexpr const char* kSimulatorOptions[] = {"--sensors",      "--motion",      "--motion-period", "--virtual-clock",
+                                                    "--camera-auto", "--pressing",    "--simulate"};
+
 struct RunOptions {
+    // Real DIGITs (--sensor, by serial or video node); empty: every DIGIT
+    // plugged in, unless the simulator was asked for (simulate).
+    std::vector<std::string> digits;
+    bool simulate = false;  // a simulator option was given
+    DigitEncoding encoding = DigitEncoding::Yuyv;
     int sensors = 1;
     std::string object = "coin";
     SimMotion motion = SimMotion::Still;  // simulated DIGITs: how the pressed object moves

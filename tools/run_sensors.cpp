@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "vkfuse/core/error.hpp"
+
 namespace vkfuse::cli {
 
 RunSensors simulated_sensors(const RunOptions& o) {
@@ -27,6 +29,34 @@ RunSensors simulated_sensors(const RunOptions& o) {
         out.rig.push_back({digit, sim.clock});
     }
     return out;
+}
+
+RunSensors digit_sensors(const RunOptions& o, const std::vector<std::string>& devices) {
+    RunSensors out;
+    for (const std::string& device : devices) {
+        DigitOptions digit;
+        digit.device = device;
+        digit.mode.encoding = o.encoding;
+        std::shared_ptr<DigitSensor> sensor;
+        try {
+            sensor = std::make_shared<DigitSensor>(digit);
+        } catch (const Error& e) {
+            throw Error(e.kind(), "--sensor " + std::string(e.what()));
+        }
+        for (const RigSensor& r : out.rig)
+            if (r.sensor->info().serial == sensor->info().serial)
+                throw Error(ErrorKind::InvalidArgument, "--sensor " + device + ": names DIGIT " +
+                                                            sensor->info().serial + " a second time");
+        out.rig.push_back({sensor, sensor->clock()});
+    }
+    return out;
+}
+
+std::vector<std::string> plugged_digits() {
+    std::vector<std::string> serials;
+    for (const DigitDevice& d : find_digits())
+        if (!d.bootloader && !d.serial.empty() && !d.video_nodes.empty()) serials.push_back(d.serial);
+    return serials;
 }
 
 RunSensors replayed_sensors(const RunOptions& o, std::shared_ptr<const Dataset> dataset) {

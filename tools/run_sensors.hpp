@@ -26,6 +26,14 @@ struct RunSensors {
 // LED settings that fusion feeds on (and settle for ~0.1 s after each switch).
 RunSensors simulated_sensors(const RunOptions& options);
 
+// One DigitSensor per entry of `devices` (serials or video nodes), each
+// streaming options.encoding at QVGA 60 fps, frames on CLOCK_MONOTONIC.
+// Throws Error naming "--sensor <device>" when one cannot be opened.
+RunSensors digit_sensors(const RunOptions& options, const std::vector<std::string>& devices);
+
+// The serials of the DIGITs plugged in that can stream (not in their bootloader).
+std::vector<std::string> plugged_digits();
+
 // One DatasetSensor per recorded sensor, playing options.object.
 RunSensors replayed_sensors(const RunOptions& options, std::shared_ptr<const Dataset> dataset);
 

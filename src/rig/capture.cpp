@@ -19,6 +19,10 @@ bool guarded(Hub& hub, F&& f) {
     return true;
 }
 
+// A sensor that may come back: unplugged (a DIGIT looks for its serial again
+// on the next grab) or silent for longer than it waits.
+bool recoverable(const Error& e) { return e.kind() == ErrorKind::Unplugged || e.kind() == ErrorKind::Timeout; }
+
 Switcher make_switcher(const CaptureJob& job) {
     Sensor& sensor = *job.sensor.sensor;
     if (job.config->judging == FrameJudging::Label) return Switcher::labelled(sensor);
@@ -63,12 +67,18 @@ bool capture_background(const CaptureJob& job, Switcher& switcher, std::vector<I
     return true;
 }
 
+std::optional<SwitchTiming> slot_timing(Hub& hub, const SensorSlot& slot) {
+    std::lock_guard lock(hub.mutex);
+    return slot.timing;
+}
+
 // Hands one cycle to the rig, waiting while the previous one is still there.
 bool deliver(Hub& hub, SensorSlot& slot, std::vector<Frame> frames) {
     std::unique_lock lock(hub.mutex);
     hub.changed.wait(lock, [&] { return hub.stop || !slot.ready; });
     if (hub.stop) return false;
     slot.ready = std::move(frames);
+    slot.lost.reset();
     hub.changed.notify_all();
     return true;
 }
@@ -101,7 +111,7 @@ void run_capture(const CaptureJob& job) {
     // where that one was idle also on the last (the capture of a busy sensor
     // keeps running a cycle ahead of its fusion).
     bool last_watched = false;
-    for (std::uint64_t n = 0;; ++n) {
+    for (std::uint64_t n = 0;;) {
         bool watch = false;
         if (may_watch) {
             std::unique_lock lock(hub.mutex);
@@ -115,9 +125,26 @@ void run_capture(const CaptureJob& job) {
                 watch = verdict(n - 2) && verdict(n - 1);
             if (hub.stop) return;
         }
-        if (!deliver(hub, slot, watch ? switcher.capture(cfg.sequence.front(), 1) : switcher.next_cycle(cfg.sequence)))
-            return;
+        std::vector<Frame> frames;
+        try {
+            frames = watch ? switcher.capture(cfg.sequence.front(), 1) : switcher.next_cycle(cfg.sequence);
+        } catch (const Error& e) {
+            if (!recoverable(e)) throw;
+            {
+                std::lock_guard lock(hub.mutex);
+                if (hub.stop) return;
+                slot.lost = e.kind() == ErrorKind::Unplugged ? SensorStatus::Failed : SensorStatus::Timeout;
+                slot.error = with_serial(slot.serial, e.what());
+            }
+            hub.changed.notify_all();
+            // The cycle in hand is abandoned with the scheduler's state; the
+            // measured timing still holds for the same sensor.
+            if (const auto timing = slot_timing(hub, slot)) switcher = Switcher(*job.sensor.sensor, job.sensor.clock, *timing);
+            continue;
+        }
+        if (!deliver(hub, slot, std::move(frames))) return;
         last_watched = watch;
+        ++n;
     }
 }
 

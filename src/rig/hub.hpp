@@ -35,6 +35,9 @@ struct SensorSlot {
     // A background applied after cycles began: verdicts before it do not count.
     std::uint64_t verdicts_from = 0;
     bool failed = false;
+    // Gone for now (Failed: unplugged; Timeout: silent): not waited for,
+    // reported with `error` until it delivers again.
+    std::optional<SensorStatus> lost;
     std::string error;
     bool exited = false;
 };

@@ -140,7 +140,7 @@ bool Rig::Impl::cycle_ready() const {
     bool any_ready = false, any_alive = false;
     for (std::size_t i = 0; i < hub->slots.size(); ++i) {
         const rig::SensorSlot& slot = hub->slots[i];
-        if (slot.failed) continue;
+        if (slot.failed || slot.lost) continue;
         any_alive = true;
         if (slot.ready)
             any_ready = true;
@@ -292,8 +292,8 @@ void Rig::Impl::take_cycle(CycleResult& result) {
         } else if (slot.ready) {
             r.frames = std::move(*slot.ready);
             slot.ready.reset();
-        } else if (slot.failed) {
-            r.status = SensorStatus::Failed;
+        } else if (slot.failed || slot.lost) {
+            r.status = slot.failed ? SensorStatus::Failed : *slot.lost;
             r.error = slot.error;
         } else {
             r.status = SensorStatus::Timeout;

@@ -23,6 +23,21 @@ private:
     Steady::time_point start_ = Steady::now();
 };
 
+// CLOCK_MONOTONIC itself (libstdc++'s steady_clock), not offset to the
+// clock's construction: V4L2 drivers stamp frames on it.
+class MonotonicClock final : public Clock {
+public:
+    double now() const override { return std::chrono::duration<double>(Steady::now().time_since_epoch()).count(); }
+
+    void wait_until(double seconds) override {
+        std::this_thread::sleep_until(Steady::time_point(std::chrono::duration_cast<Steady::duration>(
+            std::chrono::duration<double>(seconds))));
+    }
+
+private:
+    using Steady = std::chrono::steady_clock;
+};
+
 // Time moves only when someone waits, so a simulation runs as fast as the CPU
 // allows and gives the same timestamps on every run. Several threads (a sensor
 // and the rig) may share one, hence the mutex.
@@ -46,6 +61,7 @@ private:
 }  // namespace
 
 std::shared_ptr<Clock> make_real_clock() { return std::make_shared<RealClock>(); }
+std::shared_ptr<Clock> make_monotonic_clock() { return std::make_shared<MonotonicClock>(); }
 std::shared_ptr<Clock> make_virtual_clock() { return std::make_shared<VirtualClock>(); }
 
 }  // namespace vkfuse

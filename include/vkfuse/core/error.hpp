@@ -12,7 +12,9 @@ enum class ErrorKind {
     Format,           // corrupt or unsupported file contents
     Shape,            // inputs whose shapes or channel counts disagree
     Numeric,          // NaN or Inf in an input
-    Device,           // no Vulkan loader/device, device lost, out of device memory
+    Device,           // no Vulkan loader/device, device lost, out of device memory; a camera that fails
+    Timeout,          // a sensor that sent nothing for longer than it was given
+    Unplugged,        // a sensor that went away; the same serial may come back
 };
 
 // Every failure vkfuse reports is an Error whose what() is one line naming the

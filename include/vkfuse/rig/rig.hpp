@@ -70,7 +70,11 @@ struct RigConfig {
 enum class SensorStatus {
     Ok,       // fresh frames fused this cycle
     Timeout,  // nothing new within cycle_timeout_s; not waited for again until it delivers
-    Failed,   // threw: dropped for the rest of the run
+    // Threw: dropped for the rest of the run; except a sensor that threw
+    // Error(Unplugged) or Error(Timeout) (a DIGIT unplugged, or silent): it is
+    // reported Failed or Timeout every cycle while its capture thread asks it
+    // for frames again, and rejoins once it delivers.
+    Failed,
 };
 
 struct SensorCycle {

@@ -14,6 +14,9 @@ public:
 
 // std::chrono::steady_clock from construction; wait_until sleeps.
 std::shared_ptr<Clock> make_real_clock();
+// CLOCK_MONOTONIC in seconds since boot: the clock V4L2 drivers stamp frames
+// on, so a live camera's timestamps and LED requests share it.
+std::shared_ptr<Clock> make_monotonic_clock();
 // Starts at 0; wait_until jumps forward instantly (never backwards). Thread-safe.
 std::shared_ptr<Clock> make_virtual_clock();
 
