@@ -10,6 +10,16 @@ cd "$(dirname "$0")/.."
 PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libgtest-dev libvulkan-dev libvulkan1
           mesa-vulkan-drivers vulkan-validationlayers glslang-tools)
 
+# What the hardware-in-the-loop test needs (VKFUSE_HIL=1: ctest -L hil, tests/hil):
+# QEMU to boot Debian's kernel with an emulated DIGIT, busybox for its initramfs,
+# v4l2-compliance.
+HIL_PACKAGES=()
+HIL_CMAKE=OFF
+if [ "${VKFUSE_HIL:-0}" = 1 ]; then
+    HIL_PACKAGES=(qemu-system-x86 busybox-static v4l-utils xz-utils)
+    HIL_CMAKE=ON
+fi
+
 # What the bench's peers need: the Python pipelines and the OpenCV C++ one.
 PEER_PACKAGES=(python3-numpy python3-pywt python3-opencv libopencv-dev)
 
@@ -57,16 +67,17 @@ lavapipe_from_backports() {
 }
 
 build() {
-    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVKFUSE_HIL=$HIL_CMAKE >/dev/null
     cmake --build build -j"$(nproc)"
 }
 
 run_main_job() {
     ./build/vkfuse info
-    # One simulated DIGIT pressing a coin, cycling the paper's best pair (15,15,15) + (0,15,0) and
-    # fusing every cycle with its best method (wavelet, bior4.4), in real time.
+    # The DIGITs plugged in (else one simulated DIGIT pressing a coin, said in one line), cycling
+    # the paper's best pair (15,15,15) + (0,15,0) and fusing every cycle with its best method
+    # (wavelet, bior4.4), in real time.
     ./build/vkfuse run --cycles 120 --out out --replace  # out/ from an earlier quick start is replaced
-    echo "quickstart: wrote out/metrics.jsonl, out/fused/SIM-0001/*.png, out/side_by_side/coin_SIM-0001.png"
+    echo "quickstart: wrote out/metrics.jsonl, out/fused/<serial>/*.png, out/side_by_side/"
 }
 
 run_tests() {
@@ -76,7 +87,7 @@ run_tests() {
 
 case "${1:-}" in
     run) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build; run_main_job ;;
-    test) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build; run_tests ;;
+    test) install_missing "${PACKAGES[@]}" "${HIL_PACKAGES[@]}"; lavapipe_from_backports; build; run_tests ;;
     bench) install_missing "${PACKAGES[@]}" "${PEER_PACKAGES[@]}"; lavapipe_from_backports; build
            ./build/bench/vkfuse-bench --json bench.json ;;
     *) echo "usage: bash tools/quickstart.sh run|test|bench" >&2; exit 2 ;;

@@ -1,0 +1,84 @@
+// renderer.hpp - the emulated DIGIT's camera. Each LED setting the host asks
+// for is rendered once by the simulated DIGIT (SimDigit, the whole frame lit
+// by it) and kept; every streamed frame is then composed row by row from
+// those, on the real clock, with the simulator's LED latency and rolling
+// shutter: a row exposed across a switch mixes the two settings in the
+// proportion of its exposure each lit. Rendering per frame would be
+// physically the same but, under an emulated CPU (the HIL virtual machine
+// has no KVM), takes about a second a frame.
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "uvc_descriptors.hpp"
+#include "vkfuse/sensor/sim_digit.hpp"
+
+namespace vkfuse::emulator {
+
+struct RendererOptions {
+    double led_latency_s = 0.025;
+    std::string object = "coin";
+    int corrupt_mjpeg_every = 0;  // every Nth MJPEG frame cut short (0: never)
+    std::string serial;
+    std::vector<Illumination> prerender;  // settings rendered before streaming starts
+};
+
+class Renderer {
+public:
+    // streaming() says what to stream; submit() takes each encoded frame.
+    Renderer(const RendererOptions& options, std::function<std::optional<Committed>()> streaming,
+             std::function<void(const Committed&, std::span<const std::uint8_t>)> submit);
+    ~Renderer();  // stops the thread
+
+    // The host's LED request, now: it lights rows from now + the latency on.
+    void set_illumination(const Illumination& setting);
+    // Stops or resumes sending frames (the camera goes silent; control
+    // requests are still answered).
+    void pause(bool paused) { paused_ = paused; }
+    bool paused() const { return paused_; }
+    std::uint64_t frames_sent() const { return sent_; }
+
+private:
+    struct Switch {
+        double at;  // when the setting starts to light the gel (real clock)
+        std::string key;
+    };
+    // One setting's frame in each encoding the stream may ask for.
+    struct Lit {
+        std::vector<std::uint8_t> rgb, yuyv, jpeg;
+    };
+    void run();
+    SimDigit& sim(bool vga);
+    const Lit& lit(const Illumination& setting, bool vga);
+    // Frame starting at t0 in the committed encoding: a setting's own frame
+    // when one lit every row, else mixed row by row.
+    std::vector<std::uint8_t> compose(double t0, const Committed& c);
+
+    RendererOptions options_;
+    std::function<std::optional<Committed>()> streaming_;
+    std::function<void(const Committed&, std::span<const std::uint8_t>)> submit_;
+    std::shared_ptr<Clock> clock_ = make_real_clock();
+    std::unique_ptr<SimDigit> sims_[2];  // [vga], each on a virtual clock of its own; renderer thread only
+    std::shared_ptr<Clock> sim_clocks_[2];
+
+    std::mutex mutex_;  // history_ and settings_
+    std::deque<Switch> history_;
+    std::map<std::string, Illumination> settings_;
+    std::map<std::string, Lit> frames_[2];  // [vga], per setting; renderer thread only
+
+    std::atomic<bool> stop_{false}, paused_{false};
+    std::atomic<std::uint64_t> sent_{0};
+    std::thread thread_;
+};
+
+}  // namespace vkfuse::emulator
