@@ -89,7 +89,6 @@ struct DigitSensor::Impl {
     Illumination setting{{15, 15, 15}};
     double stale_before = 0;  // frames stamped earlier were exposed before the last LED request
     DigitCounters counters;
-    std::vector<std::uint8_t> rgb;
 
     void open(const std::string& node) {
         auto c = std::make_unique<v4l2::Capture>(node, serial);
@@ -145,7 +144,7 @@ struct DigitSensor::Impl {
         }
     }
 
-    bool decode(std::span<const std::uint8_t> bytes) {
+    bool decode(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& rgb) const {
         const DigitMode& m = options.mode;
         if (m.encoding == DigitEncoding::Yuyv) return yuyv_to_rgb(bytes, m.width, m.height, rgb);
         std::string why;
@@ -192,21 +191,20 @@ Frame DigitSensor::grab() {
         if (!filled)
             throw Error(ErrorKind::Timeout,
                         im.serial + ": no frame within " + std::to_string(im.options.timeout_s) + " s");
+        Frame f;
         bool usable = false;
         if (filled->timestamp < im.stale_before)
             ++im.counters.stale;
-        else if (filled->error || filled->bytes.empty() || !im.decode(filled->bytes))
+        else if (filled->error || filled->bytes.empty() || !im.decode(filled->bytes, f.pixels))
             ++im.counters.corrupt;
         else
             usable = true;
         im.guarded([&](v4l2::Capture& c) { c.requeue(filled->index); });
         if (!usable) continue;
-        Frame f;
         f.index = im.counters.delivered++;
         f.timestamp = filled->timestamp;
         f.height = im.options.mode.height;
         f.width = im.options.mode.width;
-        f.pixels = im.rgb;
         return f;
     }
 }

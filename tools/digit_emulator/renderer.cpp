@@ -27,8 +27,7 @@ Renderer::Renderer(const RendererOptions& options, std::function<std::optional<C
                    std::function<void(const Committed&, std::span<const std::uint8_t>)> submit)
     : options_(options), streaming_(std::move(streaming)), submit_(std::move(submit)) {
     const Illumination power_up({15, 15, 15});
-    history_.push_back({-1e9, power_up.to_string()});
-    settings_[power_up.to_string()] = power_up;
+    history_.push_back({-1e9, power_up});
     lit(power_up, false);
     for (const Illumination& s : options_.prerender) lit(s, false);
     thread_ = std::thread([this] { run(); });
@@ -41,8 +40,7 @@ Renderer::~Renderer() {
 
 void Renderer::set_illumination(const Illumination& setting) {
     std::lock_guard lock(mutex_);
-    settings_[setting.to_string()] = setting;
-    history_.push_back({clock_->now() + options_.led_latency_s, setting.to_string()});
+    history_.push_back({clock_->now() + options_.led_latency_s, setting});
     while (history_.size() > 16) history_.pop_front();
 }
 
@@ -74,11 +72,9 @@ const Renderer::Lit& Renderer::lit(const Illumination& setting, bool vga) {
 
 std::vector<std::uint8_t> Renderer::compose(double t0, const Committed& c) {
     std::vector<Switch> history;
-    std::map<std::string, Illumination> settings;
     {
         std::lock_guard lock(mutex_);
         history.assign(history_.begin(), history_.end());
-        settings = settings_;
     }
     const bool vga = c.mode.width == 640;
     const SimTiming timing = sim(vga).timing();
@@ -93,7 +89,7 @@ std::vector<std::uint8_t> Renderer::compose(double t0, const Committed& c) {
             const double from = std::max(start, history[i].at);
             const double to = std::min(end, i + 1 < history.size() ? history[i + 1].at : end);
             const int w = to > from ? int(std::lround(256.0 * (to - from) / (end - start))) : 0;
-            if (w > 0) rows[std::size_t(r)].push_back({&lit(settings.at(history[i].key), vga), w});
+            if (w > 0) rows[std::size_t(r)].push_back({&lit(history[i].setting, vga), w});
         }
         const auto& row = rows[std::size_t(r)];
         if (row.size() != 1 || (only && row.front().first != only)) mixed = true;
@@ -144,7 +140,6 @@ void Renderer::run() {
             ++mjpeg_frames % std::uint64_t(options_.corrupt_mjpeg_every) == 0)
             encoded.resize(encoded.size() / 2);  // cut short: the entropy-coded data ends mid-scan
         submit_(*c, encoded);
-        ++sent_;
     }
 }
 

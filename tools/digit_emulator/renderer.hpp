@@ -46,12 +46,11 @@ public:
     // requests are still answered).
     void pause(bool paused) { paused_ = paused; }
     bool paused() const { return paused_; }
-    std::uint64_t frames_sent() const { return sent_; }
 
 private:
     struct Switch {
         double at;  // when the setting starts to light the gel (real clock)
-        std::string key;
+        Illumination setting;
     };
     // One setting's frame in each encoding the stream may ask for.
     struct Lit {
@@ -71,13 +70,11 @@ private:
     std::unique_ptr<SimDigit> sims_[2];  // [vga], each on a virtual clock of its own; renderer thread only
     std::shared_ptr<Clock> sim_clocks_[2];
 
-    std::mutex mutex_;  // history_ and settings_
+    std::mutex mutex_;  // history_
     std::deque<Switch> history_;
-    std::map<std::string, Illumination> settings_;
     std::map<std::string, Lit> frames_[2];  // [vga], per setting; renderer thread only
 
     std::atomic<bool> stop_{false}, paused_{false};
-    std::atomic<std::uint64_t> sent_{0};
     std::thread thread_;
 };
 
