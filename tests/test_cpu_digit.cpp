@@ -47,6 +47,24 @@ TEST(Digit, LedValuesPerFirmware) {
                  ErrorKind::InvalidArgument, "exceeds 15");
 }
 
+TEST(Digit, LedSettingReadsBackWhatLedValueSends) {
+    const DigitFirmware v2{2, 0}, v1{1, 0};
+    const ControlRange packed{0, 0xfff}, with_off{0, 255};
+    for (int r = 0; r <= 15; ++r)
+        for (int g = 0; g <= 15; g += 5)
+            for (int b = 0; b <= 15; b += 3) {
+                const Illumination s({r, g, b});
+                EXPECT_EQ(digit_led_setting(digit_led_value(s, v2, packed), v2, packed).to_string(), s.to_string());
+            }
+    for (int level = 0; level <= 15; ++level) {
+        const Illumination s({level, level, level});
+        EXPECT_EQ(digit_led_setting(digit_led_value(s, v1, with_off), v1, with_off).to_string(), s.to_string());
+    }
+    // Values the firmware clamps to its range light what the clamped value does.
+    EXPECT_EQ(digit_led_setting(0x1fff, v2, packed).to_string(), "15,15,15");
+    EXPECT_EQ(digit_led_setting(300, v1, with_off).to_string(), "15,15,15");
+}
+
 TEST(Digit, DiscoveryFindsDigitsTheirNodesAndBootloaders) {
     TempDir tmp;
     FakeSysfs sys(tmp.file("sys"));

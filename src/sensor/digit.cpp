@@ -116,6 +116,13 @@ std::int32_t digit_led_value(const Illumination& setting, DigitFirmware firmware
     return value;
 }
 
+Illumination digit_led_setting(std::int32_t value, DigitFirmware firmware, ControlRange range) {
+    const std::int32_t v = std::clamp(value, range.minimum, range.maximum);
+    if (firmware.per_led_levels()) return Illumination({(v >> 8) & 15, (v >> 4) & 15, v & 15});
+    const int level = range.maximum > 0 ? int(std::lround(double(v) * 15.0 / double(range.maximum))) : 0;
+    return Illumination({level, level, level});
+}
+
 std::vector<DigitDevice> find_digits(const DigitDiscovery& where) {
     std::vector<DigitDevice> found;
     std::error_code ec;

@@ -27,7 +27,10 @@ int xioctl(int fd, unsigned long request, void* arg) {
     return r;
 }
 
-bool gone(int err) { return err == ENODEV || err == ENXIO || err == EIO; }
+// What a request to a camera that is being unplugged fails with: the node
+// gone (ENODEV, ENXIO), or a USB transfer the host controller cut short as
+// the device went (uvcvideo passes ESHUTDOWN, EPROTO and EIO through).
+bool gone(int err) { return err == ENODEV || err == ENXIO || err == EIO || err == ESHUTDOWN || err == EPROTO; }
 
 double seconds(const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; }
 

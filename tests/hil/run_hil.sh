@@ -7,9 +7,9 @@
 #   run_hil.sh CACHE_DIR EMULATOR HIL_TESTS VKFUSE
 #
 # The kernel package is downloaded once into CACHE_DIR (apt-get download:
-# never installed as this machine's kernel). It is bookworm-backports' 6.12:
-# Debian 12's 6.1 and this one both carry dummy_hcd and GadgetFS, and 6.12 is
-# what the emulator was developed against. QEMU runs without KVM (TCG).
+# never installed as this machine's kernel). It is bookworm-backports' 6.12
+# (Debian 12's 6.1 carries vhci_hcd too; 6.12 is what the emulator was
+# developed against). QEMU runs without KVM (TCG).
 set -euo pipefail
 cache=$1 emulator=$2 tests=$3 vkfuse=$4
 here=$(cd "$(dirname "$0")" && pwd)
@@ -55,7 +55,7 @@ mkdir -p "$root"/{bin,proc,sys,dev,tmp,mods,hil}
 cp "$busybox_bin" "$root/bin/busybox"
 loaded=" "
 i=0
-for m in usb_common udc_core usbcore dummy_hcd gadgetfs mc videobuf2_common videodev videobuf2_v4l2 \
+for m in usb_common usbcore usbip_core vhci_hcd mc videobuf2_common videodev videobuf2_v4l2 \
          videobuf2_memops videobuf2_vmalloc uvc uvcvideo; do
     file=$(find "$modules/kernel" -name "$m.ko*" -o -name "${m//_/-}.ko*" | head -1)
     [ -n "$file" ] || { echo "hil: module $m is not in $(basename "$modules")" >&2; exit 1; }
@@ -82,7 +82,6 @@ cat >"$root/init" <<'INIT'
 /bin/busybox --install -s /bin
 mount -t proc proc /proc; mount -t sysfs sys /sys; mount -t devtmpfs dev /dev; mount -t tmpfs tmp /tmp
 for m in /mods/*.ko; do insmod "$m" || echo "hil: insmod $m failed"; done
-mkdir -p /dev/gadget && mount -t gadgetfs gadgetfs /dev/gadget
 cd /hil && PATH=/hil:/bin sh /hil/in_vm.sh
 echo "hil-exit-status $?"
 poweroff -f

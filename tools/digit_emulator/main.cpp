@@ -1,24 +1,26 @@
 // vkfuse-digit-emulator: an emulated DIGIT that the kernel's own uvcvideo
-// driver talks to, for hardware-in-the-loop tests (tests/hil). Through
-// GadgetFS on dummy_hcd it is a USB device with the DIGIT's identity and
-// modes (uvc_descriptors.hpp, gadgetfs_camera.hpp), and it streams frames of
-// the simulated DIGIT lit as the zoom control last said (renderer.hpp).
+// driver talks to, for hardware-in-the-loop tests (tests/hil). Plugged into
+// the kernel's virtual USB host controller (vhci_hcd, USB/IP's) it is a USB
+// device with the DIGIT's identity and modes (uvc_descriptors.hpp,
+// uvc_camera.hpp, usbip_device.hpp), and it streams frames of the simulated
+// DIGIT lit as the zoom control last said (renderer.hpp). Needs root (vhci's
+// attach file) and the vhci_hcd module.
 //
 //   vkfuse-digit-emulator --serial D20001 [--firmware 0200] [--latency-ms 25]
 //       [--corrupt-mjpeg-every N] [--object coin] [--prerender 15,0,0+0,15,0]
-//       [--gadgetfs /dev/gadget] [--udc dummy_udc]   (--udc: the ep0 file GadgetFS names after the controller)
+//       [--vhci /sys/devices/platform/vhci_hcd.0]
 //
 // Prints "digit-emulator: ready <serial> <host /dev/videoN>" once the host has
-// its capture node. Signals: SIGUSR1 unplugs (the device is unregistered: the
-// host sees it go), SIGUSR2 plugs it back, SIGHUP stops or resumes the
-// stream (a silent camera), SIGTERM / SIGINT unplug and exit.
+// its capture node. Signals: SIGUSR1 unplugs (the link closes: the host sees
+// the device go), SIGUSR2 plugs it back, SIGHUP stops or resumes the stream
+// (a silent camera), SIGTERM / SIGINT unplug and exit. Several emulators may
+// run at once, each on a port of its own.
 // VKFUSE_EMULATOR_TRACE=1 prints every control request the host makes.
 #include <signal.h>
 #include <sys/signalfd.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -27,7 +29,7 @@
 #include <string>
 #include <thread>
 
-#include "gadgetfs_camera.hpp"
+#include "uvc_camera.hpp"
 #include "renderer.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/digit.hpp"
@@ -48,8 +50,7 @@ Options parse(int argc, char** argv) {
         const std::string v = argv[++i];
         if (a == "--serial") o.camera.serial = v;
         else if (a == "--firmware") o.camera.bcd_device = std::uint16_t(std::stoul(v, nullptr, 16));
-        else if (a == "--gadgetfs") o.camera.gadgetfs = v;
-        else if (a == "--udc") o.camera.udc = v;
+        else if (a == "--vhci") o.camera.vhci = v;
         else if (a == "--latency-ms") o.render.led_latency_s = std::stod(v) / 1000.0;
         else if (a == "--corrupt-mjpeg-every") o.render.corrupt_mjpeg_every = std::stoi(v);
         else if (a == "--object") o.render.object = v;
@@ -72,13 +73,6 @@ std::string host_node(const std::string& serial, double timeout_s) {
                                        std::to_string(int(timeout_s)) + " s");
 }
 
-// The LEDs a zoom value lights, as the DIGIT's firmware reads it.
-Illumination leds_for(std::uint16_t value, const DigitFirmware& fw) {
-    if (fw.per_led_levels()) return Illumination({(value >> 8) & 15, (value >> 4) & 15, value & 15});
-    const int level = int(std::lround(std::min<int>(value, 255) * 15.0 / 255.0));
-    return Illumination({level, level, level});
-}
-
 int run(Options o) {
     sigset_t signals;
     sigemptyset(&signals);
@@ -91,25 +85,26 @@ int run(Options o) {
     const DigitFirmware fw = DigitFirmware::from_bcd(bcd).value_or(DigitFirmware{2, 0});
     o.camera.zoom = fw.per_led_levels() ? ZoomRange{0, 0x0fff, 1, 0x0fff} : ZoomRange{0, 255, 1, 255};
 
-    // Unplugging removes the device (its GadgetFS registration); plugging it
-    // back registers a new one, as a cable would. The renderer reaches the
+    // Unplugging closes the device's link; plugging it back attaches a new
+    // one, as a cable would. The renderer reaches the
     // camera of the moment through `plugged`.
     std::mutex mutex;
-    std::shared_ptr<GadgetfsCamera> plugged;
+    std::shared_ptr<UvcCamera> plugged;
     const auto current = [&] {
         std::lock_guard lock(mutex);
         return plugged;
     };
     std::unique_ptr<Renderer> renderer;
     const auto plug = [&] {
-        auto camera = std::make_shared<GadgetfsCamera>(o.camera, [&](std::uint16_t v) {
-            if (renderer) renderer->set_illumination(leds_for(v, fw));
+        auto camera = std::make_shared<UvcCamera>(o.camera, [&](std::uint16_t v) {
+            if (renderer)
+                renderer->set_illumination(digit_led_setting(v, fw, {o.camera.zoom.minimum, o.camera.zoom.maximum}));
         });
         std::lock_guard lock(mutex);
         plugged = std::move(camera);
     };
     const auto unplug = [&] {
-        std::shared_ptr<GadgetfsCamera> gone;
+        std::shared_ptr<UvcCamera> gone;
         {
             std::lock_guard lock(mutex);
             gone.swap(plugged);
@@ -122,8 +117,9 @@ int run(Options o) {
             const auto camera = current();
             return camera ? camera->streaming() : std::nullopt;
         },
-        [&](const Committed& c, std::span<const std::uint8_t> frame) {
-            if (const auto camera = current()) camera->submit(c, frame);
+        [&](const Committed& c, std::size_t size, const FrameBytes& frame) {
+            const auto camera = current();
+            return camera && camera->send_frame(c, size, frame);
         });
     plug();
 

@@ -23,9 +23,8 @@ SimDigitOptions sim_options(const RendererOptions& o, bool vga) {
 
 }  // namespace
 
-Renderer::Renderer(const RendererOptions& options, std::function<std::optional<Committed>()> streaming,
-                   std::function<void(const Committed&, std::span<const std::uint8_t>)> submit)
-    : options_(options), streaming_(std::move(streaming)), submit_(std::move(submit)) {
+Renderer::Renderer(const RendererOptions& options, std::function<std::optional<Committed>()> streaming, Send send)
+    : options_(options), streaming_(std::move(streaming)), send_(std::move(send)) {
     const Illumination power_up({15, 15, 15});
     history_.push_back({-1e9, power_up});
     lit(power_up, false);
@@ -70,57 +69,71 @@ const Renderer::Lit& Renderer::lit(const Illumination& setting, bool vga) {
     return l;
 }
 
-std::vector<std::uint8_t> Renderer::compose(double t0, const Committed& c) {
+void Renderer::compose(double t0, const Committed& c, int from, int to, std::uint8_t* out) {
     std::vector<Switch> history;
     {
         std::lock_guard lock(mutex_);
         history.assign(history_.begin(), history_.end());
     }
-    const bool vga = c.mode.width == 640;
+    const bool vga = c.mode.width == 640, yuyv = !c.mode.mjpeg;
     const SimTiming timing = sim(vga).timing();
-    const int height = c.mode.height;
-    // Per row, the share of its exposure each setting lit, in 1/256ths.
-    std::vector<std::vector<std::pair<const Lit*, int>>> rows(static_cast<std::size_t>(height));
-    bool mixed = false;
-    const Lit* only = nullptr;
-    for (int r = 0; r < height; ++r) {
-        const double start = t0 + r * timing.row_time_s, end = start + timing.nominal_exposure_s;
-        for (std::size_t i = 0; i < history.size(); ++i) {
-            const double from = std::max(start, history[i].at);
-            const double to = std::min(end, i + 1 < history.size() ? history[i + 1].at : end);
-            const int w = to > from ? int(std::lround(256.0 * (to - from) / (end - start))) : 0;
-            if (w > 0) rows[std::size_t(r)].push_back({&lit(history[i].setting, vga), w});
-        }
-        const auto& row = rows[std::size_t(r)];
-        if (row.size() != 1 || (only && row.front().first != only)) mixed = true;
-        if (row.size() == 1) only = row.front().first;
-    }
-    if (!mixed && only) return c.mode.mjpeg ? only->jpeg : only->yuyv;
-    // Mixed rows blend; YUYV mixes as RGB does, its conversion being affine.
-    const bool yuyv = !c.mode.mjpeg;
     const std::size_t row_bytes = std::size_t(c.mode.width) * (yuyv ? 2 : 3);
-    std::vector<std::uint8_t> out(row_bytes * std::size_t(height));
-    for (int r = 0; r < height; ++r) {
-        const auto& row = rows[std::size_t(r)];
-        std::uint8_t* dst = out.data() + std::size_t(r) * row_bytes;
+    std::vector<std::pair<const Lit*, int>> shares;  // the share of the row's exposure each setting lit, in 1/256ths
+    for (int r = from; r < to; ++r) {
+        const double start = t0 + r * timing.row_time_s, end = start + timing.nominal_exposure_s;
+        shares.clear();
+        for (std::size_t i = 0; i < history.size(); ++i) {
+            const double lit_from = std::max(start, history[i].at);
+            const double lit_to = std::min(end, i + 1 < history.size() ? history[i + 1].at : end);
+            const int w = lit_to > lit_from ? int(std::lround(256.0 * (lit_to - lit_from) / (end - start))) : 0;
+            if (w > 0) shares.push_back({&lit(history[i].setting, vga), w});
+        }
+        std::uint8_t* dst = out + std::size_t(r) * row_bytes;
         const auto src = [&](const Lit* l) { return (yuyv ? l->yuyv : l->rgb).data() + std::size_t(r) * row_bytes; };
-        if (row.size() == 1) {
-            std::copy_n(src(row.front().first), row_bytes, dst);
+        if (shares.size() == 1) {
+            std::copy_n(src(shares.front().first), row_bytes, dst);
             continue;
         }
+        // Mixed rows blend; YUYV mixes as RGB does, its conversion being affine.
         int total = 0;
-        for (const auto& [l, w] : row) total += w;
+        for (const auto& [l, w] : shares) total += w;
         for (std::size_t k = 0; k < row_bytes; ++k) {
             int acc = 0;
-            for (const auto& [l, w] : row) acc += w * src(l)[k];
+            for (const auto& [l, w] : shares) acc += w * src(l)[k];
             dst[k] = std::uint8_t(total ? (acc + total / 2) / total : 0);
         }
     }
-    return yuyv ? out : rgb_to_jpeg(out, c.mode.width, c.mode.height, 85);
+}
+
+// Each transfer's bytes are sent once the last row in them is exposed.
+void Renderer::stream_yuyv(double t0, const Committed& c) {
+    const SimTiming timing = sim(c.mode.width == 640).timing();
+    const std::size_t row_bytes = std::size_t(c.mode.width) * 2;
+    std::vector<std::uint8_t> frame(row_bytes * std::size_t(c.mode.height));
+    int rows_done = 0;
+    send_(c, frame.size(), [&](std::size_t bytes) {
+        const int rows = int((bytes + row_bytes - 1) / row_bytes);
+        if (rows > rows_done) {
+            clock_->wait_until(t0 + (rows - 1) * timing.row_time_s + timing.nominal_exposure_s);
+            compose(t0, c, rows_done, rows, frame.data());
+            rows_done = rows;
+        }
+        return frame.data();
+    });
+}
+
+void Renderer::stream_mjpeg(double t0, const Committed& c) {
+    const SimTiming timing = sim(c.mode.width == 640).timing();
+    clock_->wait_until(t0 + timing.frame_span_s(timing.nominal_exposure_s));
+    std::vector<std::uint8_t> rgb(std::size_t(c.mode.width) * std::size_t(c.mode.height) * 3);
+    compose(t0, c, 0, c.mode.height, rgb.data());
+    std::vector<std::uint8_t> jpeg = rgb_to_jpeg(rgb, c.mode.width, c.mode.height, 85);
+    if (options_.corrupt_mjpeg_every > 0 && ++mjpeg_frames_ % std::uint64_t(options_.corrupt_mjpeg_every) == 0)
+        jpeg.resize(jpeg.size() / 2);  // cut short: the entropy-coded data ends mid-scan
+    send_(c, jpeg.size(), [&](std::size_t) { return jpeg.data(); });
 }
 
 void Renderer::run() {
-    std::uint64_t mjpeg_frames = 0;
     double next = clock_->now();
     while (!stop_) {
         const std::optional<Committed> c = streaming_();
@@ -129,17 +142,13 @@ void Renderer::run() {
             next = clock_->now();
             continue;
         }
-        const SimTiming timing = sim(c->mode.width == 640).timing();
-        // Frame n starts exposing at `next`; it is read out a frame span later.
+        // Frame n starts exposing at `next`, frame n + 1 a period later.
         const double period = 1.0 / c->fps();
         if (clock_->now() > next + period) next = clock_->now();  // fell behind: the camera streams on
-        clock_->wait_until(next + timing.frame_span_s(timing.nominal_exposure_s));
-        std::vector<std::uint8_t> encoded = compose(next, *c);
+        const double t0 = next;
         next += period;
-        if (c->mode.mjpeg && options_.corrupt_mjpeg_every > 0 &&
-            ++mjpeg_frames % std::uint64_t(options_.corrupt_mjpeg_every) == 0)
-            encoded.resize(encoded.size() / 2);  // cut short: the entropy-coded data ends mid-scan
-        submit_(*c, encoded);
+        if (c->mode.mjpeg) stream_mjpeg(t0, *c);
+        else stream_yuyv(t0, *c);
     }
 }
 

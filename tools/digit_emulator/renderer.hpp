@@ -6,6 +6,12 @@
 // proportion of its exposure each lit. Rendering per frame would be
 // physically the same but, under an emulated CPU (the HIL virtual machine
 // has no KVM), takes about a second a frame.
+//
+// A YUYV frame leaves as its rows are read out, as a streaming camera's do:
+// the host's first transfer of a frame takes its first rows once they are
+// exposed, so uvcvideo, which stamps a frame when its first bytes arrive,
+// stamps it a row exposure after the frame started. An MJPEG frame leaves
+// once the whole frame is read out and compressed.
 #pragma once
 #include <atomic>
 #include <cstdint>
@@ -20,7 +26,7 @@
 #include <thread>
 #include <vector>
 
-#include "uvc_descriptors.hpp"
+#include "uvc_camera.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::emulator {
@@ -35,9 +41,10 @@ struct RendererOptions {
 
 class Renderer {
 public:
-    // streaming() says what to stream; submit() takes each encoded frame.
-    Renderer(const RendererOptions& options, std::function<std::optional<Committed>()> streaming,
-             std::function<void(const Committed&, std::span<const std::uint8_t>)> submit);
+    // streaming() says what to stream; send() streams each frame, taking its
+    // bytes as the host asks for them (UvcCamera::send_frame).
+    using Send = std::function<bool(const Committed&, std::size_t frame_size, const FrameBytes& frame)>;
+    Renderer(const RendererOptions& options, std::function<std::optional<Committed>()> streaming, Send send);
     ~Renderer();  // stops the thread
 
     // The host's LED request, now: it lights rows from now + the latency on.
@@ -59,13 +66,17 @@ private:
     void run();
     SimDigit& sim(bool vga);
     const Lit& lit(const Illumination& setting, bool vga);
-    // Frame starting at t0 in the committed encoding: a setting's own frame
-    // when one lit every row, else mixed row by row.
-    std::vector<std::uint8_t> compose(double t0, const Committed& c);
+    // Rows [from, to) of the frame starting at t0, in the committed encoding
+    // (YUYV, or RGB for MJPEG), into `out` (the whole frame): a setting's own
+    // rows where one lit a row alone, else mixed.
+    void compose(double t0, const Committed& c, int from, int to, std::uint8_t* out);
+    void stream_yuyv(double t0, const Committed& c);
+    void stream_mjpeg(double t0, const Committed& c);
 
     RendererOptions options_;
     std::function<std::optional<Committed>()> streaming_;
-    std::function<void(const Committed&, std::span<const std::uint8_t>)> submit_;
+    Send send_;
+    std::uint64_t mjpeg_frames_ = 0;  // renderer thread only
     std::shared_ptr<Clock> clock_ = make_real_clock();
     std::unique_ptr<SimDigit> sims_[2];  // [vga], each on a virtual clock of its own; renderer thread only
     std::shared_ptr<Clock> sim_clocks_[2];

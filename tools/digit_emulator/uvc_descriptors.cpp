@@ -59,13 +59,9 @@ std::vector<std::uint8_t> streaming_formats() {
 
 std::vector<StreamMode> digit_stream_modes() {
     std::vector<StreamMode> out;
-
     for (const bool mjpeg : {false, true}) {
         out.push_back({mjpeg ? 2 : 1, 1, mjpeg, 320, 240, {10000000 / 60, 10000000 / 30}});
-        // VGA YUYV at 30 fps only: every descriptor must fit one 256-byte control response.
-        out.push_back({mjpeg ? 2 : 1, 2, mjpeg, 640, 480,
-                       mjpeg ? std::vector<std::uint32_t>{10000000 / 30, 10000000 / 15}
-                             : std::vector<std::uint32_t>{10000000 / 30}});
+        out.push_back({mjpeg ? 2 : 1, 2, mjpeg, 640, 480, {10000000 / 30, 10000000 / 15}});
     }
     return out;
 }
@@ -78,16 +74,21 @@ std::vector<std::uint8_t> device_descriptor(std::uint16_t bcd_device) {
     return d.b;
 }
 
+std::vector<std::uint8_t> device_qualifier() {
+    Bytes q;
+    q.u8(10).u8(6).u16(0x0200).u8(0).u8(0).u8(0).u8(64).u8(1).u8(0);
+    return q.b;
+}
+
 std::vector<std::uint8_t> endpoint_descriptor(bool high_speed) {
     Bytes e;
     e.u8(7).u8(5).u8(kStreamingEndpoint).u8(0x02).u16(high_speed ? 512 : 64).u8(0);
     return e.b;
 }
 
-// GadgetFS answers a control request with at most 256 bytes, the whole
-// configuration included: the layout is as lean as UVC 1.1 allows (no
-// interface association, no colour matching, 2-byte camera controls, no
-// per-format streaming controls) and comes to exactly 256 bytes.
+// The layout is as lean as UVC 1.1 allows (no interface association, no
+// colour matching, 2-byte camera controls, no per-format streaming controls):
+// uvcvideo needs none of them.
 std::vector<std::uint8_t> config_descriptor(bool high_speed) {
     Bytes vc;  // VideoControl class-specific descriptors
     const unsigned vc_total = 13 + 17 + 9;
@@ -111,6 +112,17 @@ std::vector<std::uint8_t> config_descriptor(bool high_speed) {
     Bytes config;
     config.u8(9).u8(2).u16(9 + unsigned(body.b.size())).u8(2).u8(1).u8(0).u8(0x80).u8(250).add(body.b);
     return config.b;
+}
+
+std::vector<std::uint8_t> streaming_control(const Committed& c) {
+    Bytes b;
+    b.u16(1);  // bmHint: dwFrameInterval fixed
+    b.u8(c.mode.format_index).u8(c.mode.frame_index).u32(c.interval);
+    b.u16(0).u16(0).u16(0).u16(0).u16(0);  // key frame rate, P frame rate, quality, window size, delay
+    b.u32(c.mode.max_frame_bytes()).u32(c.mode.max_payload_bytes());
+    b.u32(48000000);      // dwClockFrequency
+    b.u8(3).u8(1).u8(1).u8(1);  // bmFramingInfo (FID and EOF used), preferred, min and max version
+    return b.b;
 }
 
 std::vector<std::uint8_t> string_descriptor(int index, const std::string& serial) {

@@ -54,6 +54,10 @@ struct ControlRange {
 // firmware cannot show it (unequal levels on old firmware) or the value falls
 // outside the device's range (e.g. LEDs off where the minimum is 1).
 std::int32_t digit_led_value(const Illumination& setting, DigitFirmware firmware, ControlRange range);
+// What the firmware lights for a control value (digit_led_value's inverse, as
+// a DIGIT reads the control): per LED from bits 8-11, 4-7 and 0-3, or one
+// level round(value x 15 / maximum) for all three on older firmware.
+Illumination digit_led_setting(std::int32_t value, DigitFirmware firmware, ControlRange range);
 
 // One DIGIT found on the USB bus.
 struct DigitDevice {

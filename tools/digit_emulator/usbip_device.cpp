@@ -1,0 +1,228 @@
+// The device end of a USB/IP link (usbip_device.hpp). The wire format is the
+// kernel's (Documentation/usb/usbip_protocol.rst): every message starts with
+// a 48-byte header of big-endian 32-bit words; an OUT transfer's data follows
+// its CMD_SUBMIT, an IN transfer's data its RET_SUBMIT.
+#include "usbip_device.hpp"
+
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "vkfuse/core/error.hpp"
+
+namespace vkfuse::emulator {
+namespace {
+
+constexpr std::uint32_t kCmdSubmit = 1, kCmdUnlink = 2, kRetSubmit = 3, kRetUnlink = 4;
+constexpr std::size_t kHeaderBytes = 48;
+constexpr std::uint32_t kUsbSpeedHigh = 3;    // enum usb_device_speed
+constexpr std::uint32_t kPortFree = 4;        // VDEV_ST_NULL in vhci's status
+constexpr std::size_t kMaxTransfer = 1 << 24;  // larger than any transfer a UVC host makes
+constexpr std::int32_t kStall = -EPIPE, kUnlinked = -ECONNRESET;
+
+using Header = std::array<std::uint8_t, kHeaderBytes>;
+
+std::uint32_t word(const Header& h, std::size_t at) {
+    return std::uint32_t(h[at]) << 24 | std::uint32_t(h[at + 1]) << 16 | std::uint32_t(h[at + 2]) << 8 | h[at + 3];
+}
+void put_word(Header& h, std::size_t at, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) h[at + std::size_t(i)] = std::uint8_t(v >> (24 - 8 * i));
+}
+
+bool read_all(int fd, std::uint8_t* p, std::size_t n) {
+    while (n > 0) {
+        const ssize_t got = ::read(fd, p, n);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return false;
+        p += got;
+        n -= std::size_t(got);
+    }
+    return true;
+}
+bool write_all(int fd, const std::uint8_t* p, std::size_t n) {
+    while (n > 0) {
+        const ssize_t put = ::send(fd, p, n, MSG_NOSIGNAL);
+        if (put < 0 && errno == EINTR) continue;
+        if (put <= 0) return false;
+        p += put;
+        n -= std::size_t(put);
+    }
+    return true;
+}
+
+// vhci's status lists its ports, one per line: "hs  0003 004 000 00000000 ...":
+// hub, port, state, speed, device id, ... The first free high-speed one.
+std::vector<int> free_high_speed_ports(const std::string& vhci) {
+    std::ifstream status(vhci + "/status");
+    if (!status) throw Error(ErrorKind::Device, vhci + "/status: cannot read (is vhci_hcd loaded?)");
+    std::vector<int> out;
+    std::string line;
+    while (std::getline(status, line)) {
+        std::istringstream fields(line);
+        std::string hub;
+        int port = -1;
+        unsigned state = 0;
+        if (fields >> hub >> port >> state && hub == "hs" && state == kPortFree) out.push_back(port);
+    }
+    return out;
+}
+
+}  // namespace
+
+UsbipDevice::UsbipDevice(ControlHandler on_control, std::string vhci)
+    : on_control_(std::move(on_control)), trace_(std::getenv("VKFUSE_USBIP_TRACE") != nullptr) {
+    int pair[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, pair) != 0)
+        throw Error(ErrorKind::Device, std::string("socketpair: ") + std::strerror(errno));
+    fd_ = pair[0];
+    // The kernel looks the socket up by its number in this process, and keeps
+    // it; another program attaching at the same moment may take the port first.
+    std::string refused = "no free high-speed port";
+    for (int port : free_high_speed_ports(vhci)) {
+        std::ofstream attach(vhci + "/attach");
+        attach << port << ' ' << pair[1] << ' ' << ((1u << 16) | unsigned(port + 1)) << ' ' << kUsbSpeedHigh;
+        attach.flush();
+        if (attach) {
+            port_ = port;
+            break;
+        }
+        refused = "port " + std::to_string(port) + " refused the device";
+    }
+    ::close(pair[1]);
+    if (port_ < 0) {
+        ::close(fd_);
+        throw Error(ErrorKind::Device, vhci + "/attach: " + refused);
+    }
+    up_ = true;
+    thread_ = std::thread([this] { serve(); });
+}
+
+UsbipDevice::~UsbipDevice() { unplug(); }
+
+void UsbipDevice::unplug() {
+    std::lock_guard once(unplug_mutex_);
+    if (fd_ < 0) return;
+    ::shutdown(fd_, SHUT_RDWR);  // the reader sees the end of the stream, vhci the device go
+    thread_.join();
+    ::close(fd_);
+    fd_ = -1;
+}
+
+bool UsbipDevice::plugged() const {
+    std::lock_guard lock(mutex_);
+    return up_;
+}
+
+void UsbipDevice::serve() {
+    while (serve_one()) {
+    }
+    std::lock_guard lock(mutex_);
+    up_ = false;
+    pending_.clear();
+    arrived_.notify_all();
+}
+
+bool UsbipDevice::serve_one() {
+    Header h{};
+    if (!read_all(fd_, h.data(), h.size())) return false;
+    const std::uint32_t command = word(h, 0), seqnum = word(h, 4), direction_in = word(h, 12), ep = word(h, 16);
+    if (command == kCmdUnlink) {
+        const std::uint32_t victim = word(h, 20);
+        std::lock_guard lock(mutex_);
+        // Still pending: it is cancelled here and never completed. Already
+        // completed: the host has (or will have) its RET_SUBMIT.
+        std::int32_t status = 0;
+        for (auto& [number, queue] : pending_) {
+            const auto it = std::find_if(queue.begin(), queue.end(), [&](const Pending& p) { return p.seqnum == victim; });
+            if (it != queue.end()) {
+                queue.erase(it);
+                status = kUnlinked;
+            }
+        }
+        send(kRetUnlink, seqnum, status, {}, 0);
+        if (trace_) std::fprintf(stderr, "usbip: unlink %u of %u: %d\n", seqnum, victim, status);
+        return true;
+    }
+    if (command != kCmdSubmit) {
+        std::fprintf(stderr, "digit-emulator: usbip: unknown command %u; closing the link\n", command);
+        return false;
+    }
+    const std::size_t length = word(h, 24);
+    if (length > kMaxTransfer) {
+        std::fprintf(stderr, "digit-emulator: usbip: a %zu-byte transfer; closing the link\n", length);
+        return false;
+    }
+    std::vector<std::uint8_t> out_data;
+    if (!direction_in && length > 0) {
+        out_data.resize(length);
+        if (!read_all(fd_, out_data.data(), length)) return false;
+    }
+    if (ep == 0) {
+        SetupPacket s;
+        s.request_type = h[40];
+        s.request = h[41];
+        s.value = std::uint16_t(h[42] | h[43] << 8);
+        s.index = std::uint16_t(h[44] | h[45] << 8);
+        s.length = std::uint16_t(h[46] | h[47] << 8);
+        const ControlReply r = on_control_(s, out_data);
+        std::lock_guard lock(mutex_);
+        if (r.stall) send(kRetSubmit, seqnum, kStall, {}, 0);
+        else if (direction_in) send(kRetSubmit, seqnum, 0, r.data, std::min<std::size_t>(r.data.size(), length));
+        else send(kRetSubmit, seqnum, 0, {}, length);
+        return true;
+    }
+    std::lock_guard lock(mutex_);
+    if (!direction_in) {
+        send(kRetSubmit, seqnum, kStall, {}, 0);  // no OUT endpoint besides ep0
+        return true;
+    }
+    pending_[ep].push_back({seqnum, length});
+    if (trace_) std::fprintf(stderr, "usbip: submit %u ep %u %zu\n", seqnum, ep, length);
+    arrived_.notify_all();
+    return true;
+}
+
+// Writes one reply; the caller holds mutex_, so replies never interleave.
+void UsbipDevice::send(std::uint32_t command, std::uint32_t seqnum, std::int32_t status,
+                       std::span<const std::uint8_t> data, std::size_t actual) {
+    Header h{};
+    put_word(h, 0, command);
+    put_word(h, 4, seqnum);
+    put_word(h, 20, std::uint32_t(status));
+    if (command == kRetSubmit) put_word(h, 24, std::uint32_t(actual));
+    std::vector<std::uint8_t> message(h.begin(), h.end());
+    const std::size_t payload = std::min(actual, data.size());
+    message.insert(message.end(), data.begin(), data.begin() + std::ptrdiff_t(payload));
+    if (!write_all(fd_, message.data(), message.size())) up_ = false;
+}
+
+std::optional<std::size_t> UsbipDevice::next_in(unsigned ep, double timeout_s) {
+    std::unique_lock lock(mutex_);
+    const bool any = arrived_.wait_for(lock, std::chrono::duration<double>(timeout_s), [&] {
+        return !up_ || !pending_[ep].empty();
+    });
+    if (!any || !up_) return std::nullopt;
+    return pending_[ep].front().length;
+}
+
+std::optional<std::size_t> UsbipDevice::complete_in(unsigned ep, std::span<const std::uint8_t> data) {
+    std::lock_guard lock(mutex_);
+    auto& queue = pending_[ep];
+    if (!up_ || queue.empty()) return std::nullopt;
+    const Pending p = queue.front();
+    queue.pop_front();
+    send(kRetSubmit, p.seqnum, 0, data, std::min(data.size(), p.length));
+    if (trace_) std::fprintf(stderr, "usbip: ret %u %zu\n", p.seqnum, std::min(data.size(), p.length));
+    return p.length;
+}
+
+}  // namespace vkfuse::emulator
