@@ -5,9 +5,11 @@
 # vkfuse` alone.
 # With -DBENCH=ON, vkfuse-bench is installed too and runs from the prefix,
 # finding its peers there rather than in the source tree.
+# With -DPYTHON=<python3>, the Python module is imported from the prefix and
+# examples/fuse_pair.py runs against it.
 #   cmake -DBUILD=<build dir> -DSOURCE=<source dir> -DWORK=<scratch dir> -DCXX=<compiler> -DBENCH=ON|OFF
-#         -P install_package.cmake
-foreach(var BUILD SOURCE WORK CXX BENCH)
+#         -DPYTHON=<python3 or OFF> -P install_package.cmake
+foreach(var BUILD SOURCE WORK CXX BENCH PYTHON)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "install_package.cmake: -D${var}=... is required")
   endif()
@@ -74,4 +76,14 @@ run("running the pkg-config build" ${WORK}/fuse_pkgconfig)
 message(STATUS "pkg-config: ${last_output}")
 if(NOT last_output MATCHES "agree|CPU reference only")
   message(FATAL_ERROR "the pkg-config build said: ${last_output}")
+endif()
+
+# The Python module from the prefix alone (the build tree's is not on the path).
+if(PYTHON)
+  set(ENV{PYTHONPATH} ${prefix}/lib/python3/dist-packages)
+  run("the installed Python module" ${PYTHON} ${SOURCE}/examples/fuse_pair.py)
+  message(STATUS "python: ${last_output}")
+  if(NOT last_output MATCHES "agree|CPU reference only")
+    message(FATAL_ERROR "examples/fuse_pair.py said: ${last_output}")
+  endif()
 endif()

@@ -8,7 +8,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libgtest-dev libvulkan-dev libvulkan1
-          mesa-vulkan-drivers vulkan-validationlayers glslang-tools)
+          mesa-vulkan-drivers vulkan-validationlayers glslang-tools pybind11-dev python3-dev)
+
+# What the Python module's tests need: pytest and the peers it is checked against.
+PYTHON_TEST_PACKAGES=(python3-pytest python3-numpy python3-pywt python3-opencv)
 
 # What the hardware-in-the-loop test needs (ctest -L hil, tests/hil): QEMU to
 # boot Debian's kernel with emulated DIGITs, busybox for its initramfs,
@@ -87,7 +90,8 @@ run_tests() {
 
 case "${1:-}" in
     run) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build; run_main_job ;;
-    test) install_missing "${PACKAGES[@]}" "${HIL_PACKAGES[@]}"; lavapipe_from_backports; build; run_tests ;;
+    test) install_missing "${PACKAGES[@]}" "${PYTHON_TEST_PACKAGES[@]}" "${HIL_PACKAGES[@]}"; lavapipe_from_backports
+          build; run_tests ;;
     bench) install_missing "${PACKAGES[@]}" "${PEER_PACKAGES[@]}"; lavapipe_from_backports; build
            ./build/bench/vkfuse-bench --json bench.json ;;
     *) echo "usage: bash tools/quickstart.sh run|test|bench" >&2; exit 2 ;;

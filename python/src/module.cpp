@@ -1,0 +1,287 @@
+// The Python module `vkfuse` (its compiled part, vkfuse._vkfuse):
+//
+//   fused = vkfuse.fuse(frames, method="wavelet", ...)      one call, any backend
+//   m = vkfuse.metrics(image, background=None)              {"sharpness", "contrast"[, "background_diff"]}
+//   plan = vkfuse.Plan(240, 320, channels=3, frames=2, ...)  built once: pipelines, buffers
+//   fused, m = plan.run(frames)                              per cycle, the GIL released while it runs
+//   frames = vkfuse.SimDigit().capture([(15,15,15), (0,15,0)])  the simulated DIGIT (sensors.cpp)
+//
+// Bad arguments and shapes raise ValueError, everything else vkfuse.Error,
+// with the library's one-line messages. The Vulkan context is opened once per
+// process, on first use, and shared by every call and plan.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "arrays.hpp"
+#include "sensors.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
+#include "vkfuse/version.hpp"
+#include "vkfuse/vk/plan.hpp"
+
+namespace vkfuse::python {
+namespace {
+
+// The process's Vulkan context, opened on first use: nullptr when there is no
+// usable device (the reason is kept for `backend="vulkan"`'s error).
+struct Device {
+    std::once_flag once;
+    std::unique_ptr<Context> context;
+    std::string why_none;
+};
+
+Device& device() {
+    static Device d;  // the one device a Python process shares, like a default CUDA device
+    std::call_once(d.once, [] {
+        try {
+            d.context = std::make_unique<Context>();
+        } catch (const Error& e) {
+            if (e.kind() != ErrorKind::Device) throw;
+            d.why_none = e.what();
+        }
+    });
+    return d;
+}
+
+// The context `backend` asks for, or nullptr for the CPU reference path.
+Context* open_backend(const std::string& backend) {
+    if (backend == "cpu") return nullptr;
+    if (backend != "vulkan" && backend != "auto")
+        throw Error(ErrorKind::InvalidArgument, "backend " + backend + ": expected cpu, vulkan or auto");
+    Device& d = device();
+    if (!d.context && backend == "vulkan")
+        throw Error(ErrorKind::Device, "backend vulkan: no usable Vulkan device (" + d.why_none + ")");
+    return d.context.get();
+}
+
+FusionSpec spec_of(const std::string& method, const std::string& wavelet, const std::optional<int>& levels,
+                   const std::string& mode, const std::string& base_rule, const std::string& detail_rule) {
+    FusionSpec s;
+    s.method = parse_method(method);
+    s.wavelet = parse_wavelet(wavelet);
+    s.levels = levels.value_or(0);
+    if (levels && *levels < 1) throw Error(ErrorKind::InvalidArgument, "levels " + std::to_string(*levels) + ": must be >= 1");
+    s.mode = parse_wavelet_mode(mode);
+    s.base_rule = parse_rule(base_rule, "base_rule");
+    s.detail_rule = parse_rule(detail_rule, "detail_rule");
+    return s;
+}
+
+py::dict to_dict(const Metrics& m, MetricSet which) {
+    py::dict d;
+    if (which.has(Metric::Sharpness)) d["sharpness"] = m.sharpness;
+    if (which.has(Metric::Contrast)) d["contrast"] = m.contrast;
+    if (m.background_diff) d["background_diff"] = *m.background_diff;
+    return d;
+}
+
+MetricSet metric_set(const std::vector<std::string>& names) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ",") + n;
+    if (names.empty()) return {};
+    const std::optional<MetricSet> s = MetricSet::parse(list);
+    if (!s)
+        throw Error(ErrorKind::InvalidArgument,
+                    "metrics " + list + ": expected names among sharpness, contrast, background_diff, each once");
+    return *s;
+}
+
+py::array_t<float> fuse(const py::sequence& frames_in, const std::string& method, const std::string& wavelet,
+                        const std::optional<int>& levels, const std::string& mode, const std::string& base_rule,
+                        const std::string& detail_rule, const std::string& backend) {
+    const FusionSpec spec = spec_of(method, wavelet, levels, mode, base_rule, detail_rule);
+    Frames frames = to_frames(frames_in, "frames");
+    validate(spec, frames.height, frames.width, frames.channels, int(frames.arrays.size()));
+    Context* context = open_backend(backend);
+    if (!context) {
+        const std::vector<ImageD> images = frames.images();
+        ImageD fused;
+        {
+            py::gil_scoped_release unlocked;
+            fused = fuse_reference(images, spec);
+        }
+        return to_array(fused, frames.gray);
+    }
+    PlanConfig c;
+    c.fusion = spec;
+    c.height = frames.height, c.width = frames.width, c.channels = frames.channels;
+    c.frames = int(frames.arrays.size());
+    c.input = frames.type;
+    c.metrics = {};
+    const std::vector<FrameView> views = frames.views();
+    Image fused;
+    {
+        py::gil_scoped_release unlocked;
+        Plan plan(*context, c);
+        plan.run(views);
+        fused = plan.fused(0);
+    }
+    return to_array(fused, frames.gray);
+}
+
+py::dict metrics(const py::handle& image_in, const py::object& background_in, const std::string& backend) {
+    Frames image = to_frame(image_in, "image");
+    std::optional<Frames> background;
+    if (!background_in.is_none()) {
+        background = to_frame(background_in, "background");
+        if (background->height != image.height || background->width != image.width ||
+            background->channels != image.channels)
+            throw Error(ErrorKind::Shape, "background: shape differs from the image's");
+    }
+    const MetricSet which = background ? MetricSet::all() : MetricSet{Metric::Sharpness, Metric::Contrast};
+    Context* context = open_backend(backend);
+    Metrics m;
+    if (!context) {
+        const ImageD img = image.images().front();
+        const std::optional<ImageD> bg = background ? std::optional(background->images().front()) : std::nullopt;
+        py::gil_scoped_release unlocked;
+        m = metrics_reference(img, bg ? &*bg : nullptr, which);
+    } else {
+        PlanConfig c;
+        c.fuse = false;
+        c.height = image.height, c.width = image.width, c.channels = image.channels;
+        c.frames = 1;
+        c.input = image.type;
+        c.want_fused = false;
+        c.metrics = which;
+        // A plan reads its background as it reads frames: same element type.
+        if (background && background->type != image.type)
+            throw Error(ErrorKind::InvalidArgument, "background: dtype differs from the image's");
+        const std::vector<FrameView> views = image.views();
+        const std::optional<FrameView> bg = background ? std::optional(background->views().front()) : std::nullopt;
+        py::gil_scoped_release unlocked;
+        Plan plan(*context, c);
+        if (bg) plan.set_background(0, *bg);
+        plan.run(views);
+        m = plan.metrics(0);
+    }
+    return to_dict(m, which);
+}
+
+// A plan for one shape, K and method: on the device when there is one, else
+// the CPU reference path with the same interface.
+class PyPlan {
+public:
+    PyPlan(int height, int width, int channels, int frames, const std::string& dtype, const std::string& method,
+           const std::string& wavelet, const std::optional<int>& levels, const std::string& mode,
+           const std::string& base_rule, const std::string& detail_rule, const std::vector<std::string>& metrics,
+           const std::string& backend) {
+        config_.fusion = spec_of(method, wavelet, levels, mode, base_rule, detail_rule);
+        config_.height = height, config_.width = width, config_.channels = channels, config_.frames = frames;
+        if (dtype != "uint8" && dtype != "float32")
+            throw Error(ErrorKind::InvalidArgument, "dtype " + dtype + ": expected uint8 or float32");
+        config_.input = dtype == "uint8" ? PixelType::U8 : PixelType::F32;
+        config_.metrics = metric_set(metrics);
+        validate(config_.fusion, height, width, channels, frames);
+        context_ = open_backend(backend);
+        if (context_) plan_.emplace(*context_, config_);
+    }
+
+    void set_background(const py::handle& background_in) {
+        Frames bg = to_frame(background_in, "background");
+        check(bg, "background");
+        if (plan_) {
+            plan_->set_background(0, bg.views().front());
+        } else {
+            background_ = bg.images().front();
+        }
+    }
+
+    py::tuple run(const py::sequence& frames_in) {
+        Frames frames = to_frames(frames_in, "frames");
+        if (int(frames.arrays.size()) != config_.frames)
+            throw Error(ErrorKind::InvalidArgument, "frames: " + std::to_string(frames.arrays.size()) +
+                                                        " given; the plan fuses " + std::to_string(config_.frames));
+        check(frames, "frames[0]");
+        if (config_.metrics.has(Metric::BackgroundDiff) && !plan_ && !background_)
+            throw Error(ErrorKind::InvalidArgument, "background_diff: set_background() first");
+        Metrics m;
+        py::array_t<float> fused;
+        if (plan_) {
+            const std::vector<FrameView> views = frames.views();
+            {
+                py::gil_scoped_release unlocked;
+                plan_->run(views);
+            }
+            fused = to_array(plan_->fused(0), frames.gray);
+            if (!config_.metrics.empty()) m = plan_->metrics(0);
+        } else {
+            const std::vector<ImageD> images = frames.images();
+            ImageD out;
+            {
+                py::gil_scoped_release unlocked;
+                out = fuse_reference(images, config_.fusion);
+                if (!config_.metrics.empty())
+                    m = metrics_reference(out, background_ ? &*background_ : nullptr, config_.metrics);
+            }
+            fused = to_array(out, frames.gray);
+        }
+        return py::make_tuple(fused, to_dict(m, config_.metrics));
+    }
+
+    std::string backend() const { return plan_ ? "vulkan" : "cpu"; }
+
+private:
+    void check(const Frames& f, const std::string& what) const {
+        if (f.height != config_.height || f.width != config_.width || f.channels != config_.channels)
+            throw Error(ErrorKind::Shape, what + ": " + std::to_string(f.height) + "x" + std::to_string(f.width) + "x" +
+                                              std::to_string(f.channels) + "; the plan takes " +
+                                              std::to_string(config_.height) + "x" + std::to_string(config_.width) +
+                                              "x" + std::to_string(config_.channels));
+        if (f.type != config_.input)
+            throw Error(ErrorKind::InvalidArgument, what + ": dtype " + f.arrays[0].dtype().attr("name").cast<std::string>() +
+                                                       "; the plan takes " +
+                                                       (config_.input == PixelType::U8 ? "uint8" : "float32 or float64"));
+    }
+
+    PlanConfig config_;
+    Context* context_ = nullptr;
+    std::optional<Plan> plan_;
+    std::optional<ImageD> background_;  // the CPU path's
+};
+
+}  // namespace
+}  // namespace vkfuse::python
+
+PYBIND11_MODULE(_vkfuse, m) {
+    using namespace vkfuse;
+    using namespace vkfuse::python;
+    m.doc() = "vkfuse: fusion of tactile frames lit differently (Vulkan compute, CPU reference)";
+    m.attr("__version__") = std::string(kVersion);
+    static py::exception<Error> error(m, "Error");
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const Error& e) {
+            if (e.kind() == ErrorKind::InvalidArgument || e.kind() == ErrorKind::Shape)
+                PyErr_SetString(PyExc_ValueError, e.what());
+            else
+                error(e.what());
+        }
+    });
+
+    m.def("fuse", &fuse, py::arg("frames"), py::arg("method") = "wavelet", py::arg("wavelet") = "bior4.4",
+          py::arg("levels") = py::none(), py::arg("mode") = "periodization", py::arg("base_rule") = "mean",
+          py::arg("detail_rule") = "max-abs", py::arg("backend") = "auto",
+          "Fuses K frames of one shape (uint8 scaled by 1/255, float32 or float64; (H, W) or (H, W, C)) into a "
+          "float32 array of their shape. levels: None for the method's default (laplacian 4, wavelet 3).");
+    m.def("metrics", &metrics, py::arg("image"), py::arg("background") = py::none(), py::arg("backend") = "auto",
+          "Sharpness, RMS contrast and, with a background, the mean absolute difference from it.");
+    py::class_<PyPlan>(m, "Plan", "Built once for a shape, K and method; run() every cycle.")
+        .def(py::init<int, int, int, int, const std::string&, const std::string&, const std::string&,
+                      const std::optional<int>&, const std::string&, const std::string&, const std::string&,
+                      const std::vector<std::string>&, const std::string&>(),
+             py::arg("height"), py::arg("width"), py::arg("channels") = 3, py::arg("frames") = 2,
+             py::arg("dtype") = "uint8", py::arg("method") = "wavelet", py::arg("wavelet") = "bior4.4",
+             py::arg("levels") = py::none(), py::arg("mode") = "periodization", py::arg("base_rule") = "mean",
+             py::arg("detail_rule") = "max-abs",
+             py::arg("metrics") = std::vector<std::string>{"sharpness", "contrast"}, py::arg("backend") = "auto")
+        .def("set_background", &PyPlan::set_background, py::arg("background"))
+        .def("run", &PyPlan::run, py::arg("frames"), "Fuses one cycle's frames: (fused, metrics dict).")
+        .def_property_readonly("backend", &PyPlan::backend);
+    def_sensors(m);
+}
