@@ -12,6 +12,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <chrono>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -225,6 +227,28 @@ public:
 
     std::string backend() const { return plan_ ? "vulkan" : "cpu"; }
 
+    // The median of `runs` cycles of Plan::run timed in C++ alone (results
+    // read in place, nothing converted): what plan.run's Python path is
+    // compared with (bench/python_overhead.py).
+    double cpp_cycle_ms(const py::sequence& frames_in, int runs) {
+        if (!plan_) throw Error(ErrorKind::InvalidArgument, "cpp_cycle_ms: times the Vulkan plan; this one is cpu");
+        if (runs < 1) throw Error(ErrorKind::InvalidArgument, "runs " + std::to_string(runs) + ": must be >= 1");
+        Frames frames = to_frames(frames_in, "frames");
+        check(frames, "frames[0]");
+        const std::vector<FrameView> views = frames.views();
+        std::vector<double> ms;
+        py::gil_scoped_release unlocked;
+        for (int i = 0; i < runs; ++i) {
+            const auto start = std::chrono::steady_clock::now();
+            plan_->run(views);
+            if (config_.want_fused) (void)plan_->fused(0).data.front();
+            if (!config_.metrics.empty()) (void)plan_->metrics(0);
+            ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        }
+        std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
+        return ms[ms.size() / 2];
+    }
+
 private:
     void check(const Frames& f, const std::string& what) const {
         if (f.height != config_.height || f.width != config_.width || f.channels != config_.channels)
@@ -282,6 +306,8 @@ PYBIND11_MODULE(_vkfuse, m) {
              py::arg("metrics") = std::vector<std::string>{"sharpness", "contrast"}, py::arg("backend") = "auto")
         .def("set_background", &PyPlan::set_background, py::arg("background"))
         .def("run", &PyPlan::run, py::arg("frames"), "Fuses one cycle's frames: (fused, metrics dict).")
-        .def_property_readonly("backend", &PyPlan::backend);
+        .def_property_readonly("backend", &PyPlan::backend)
+        .def("cpp_cycle_ms", &PyPlan::cpp_cycle_ms, py::arg("frames"), py::arg("runs") = 20,
+             "Median ms of Plan::run timed in C++ (the baseline plan.run's overhead is measured against).");
     def_sensors(m);
 }

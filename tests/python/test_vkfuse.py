@@ -120,6 +120,11 @@ def test_a_plan_runs_cycle_after_cycle_as_fuse_does(backend):
         ref = vkfuse.metrics(want, background=scene(5).astype(np.float32), backend="cpu")
         for name in ("sharpness", "contrast", "background_diff"):
             assert m[name] == pytest.approx(ref[name], rel=1e-5)
+    if backend == "vulkan":
+        assert plan.cpp_cycle_ms(frames, runs=3) > 0
+    else:
+        with pytest.raises(ValueError, match="times the Vulkan plan"):
+            plan.cpp_cycle_ms(frames)
 
 
 def test_a_plan_refuses_what_it_was_not_built_for():
