@@ -1,8 +1,9 @@
 # The installed package as a user meets it: cmake --install into a fresh
 # prefix, then examples/fuse_installed built against it with
 # find_package(vkfuse CONFIG) and run (the GPU's image must agree with the
-# reference), then the same program compiled with `pkg-config --cflags --libs
-# vkfuse` alone.
+# reference), examples/caller_command_buffer likewise (a plan in the caller's
+# own command buffer, the validation layer silent), then fuse_installed
+# compiled with `pkg-config --cflags --libs vkfuse` alone.
 # With -DBENCH=ON, vkfuse-bench is installed too and runs from the prefix,
 # finding its peers there rather than in the source tree.
 # With -DPYTHON=<python3>, the Python module is imported from the prefix and
@@ -27,7 +28,7 @@ endfunction()
 
 run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
 foreach(installed include/vkfuse/vkfuse.hpp include/vkfuse/version.hpp include/vkfuse/core/fusion.hpp
-                  include/vkfuse/vk/plan.hpp include/vkfuse/sensor/sim_digit.hpp include/vkfuse/rig/rig.hpp
+                  include/vkfuse/vk/plan.hpp include/vkfuse/vk/interop.hpp include/vkfuse/sensor/sim_digit.hpp include/vkfuse/rig/rig.hpp
                   lib/cmake/vkfuse/vkfuseConfig.cmake lib/pkgconfig/vkfuse.pc bin/vkfuse)
   if(NOT EXISTS ${prefix}/${installed})
     message(FATAL_ERROR "cmake --install left out ${installed}")
@@ -60,6 +61,18 @@ run("running the example" ${WORK}/example/fuse_installed)
 message(STATUS "find_package: ${last_output}")
 if(NOT last_output MATCHES "agree|CPU reference only")
   message(FATAL_ERROR "the example said: ${last_output}")
+endif()
+
+# A plan embedded in a caller's own device and command buffer
+# (examples/caller_command_buffer), under the caller's validation layer.
+run("configuring the caller example" ${CMAKE_COMMAND} -S ${SOURCE}/examples/caller_command_buffer
+    -B ${WORK}/caller_example -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX})
+run("building the caller example" ${CMAKE_COMMAND} --build ${WORK}/caller_example)
+run("running the caller example" ${WORK}/caller_example/caller_command_buffer)
+message(STATUS "caller's command buffer: ${last_output}")
+if(last_output MATCHES "DIFFER" OR NOT last_output MATCHES "timeline.*agree" OR
+   NOT last_output MATCHES "validation messages: 0")
+  message(FATAL_ERROR "the caller example said: ${last_output}")
 endif()
 
 # pkg-config alone.

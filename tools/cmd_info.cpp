@@ -15,7 +15,8 @@ constexpr CommandSpec kSpec{
     "vkfuse info",
     "Lists every Vulkan device the loader reports (index, name, driver, type, API\n"
     "version, whether vkfuse can use it, whether it has the 16-bit storage that\n"
-    "Precision::Fp16Storage needs and the doubles of float64 filter arithmetic)\n"
+    "Precision::Fp16Storage needs, the doubles of float64 filter arithmetic, and\n"
+    "the memory sharing of vkfuse/vk/interop.hpp: fds between devices, host memory)\n"
     "and the device --backend auto picks, with the filter arithmetic it uses.\n"
     "Without a Vulkan loader or device it says so: the CPU reference path is used.",
     {},
@@ -26,6 +27,9 @@ void print_device(const DeviceInfo& d) {
     std::string extras;
     if (d.usable && d.fp16_storage) extras += "fp16 storage";
     if (d.usable && d.float64) extras += extras.empty() ? "float64" : ", float64";
+    // What vkfuse/vk/interop.hpp's shared memory needs.
+    if (d.usable && d.external_memory_fd) extras += extras.empty() ? "memory fd" : ", memory fd";
+    if (d.usable && d.external_memory_host) extras += extras.empty() ? "host memory" : ", host memory";
     if (!extras.empty()) extras = " (" + extras + " too)";
     std::printf("  [%d] %s\n      type %s, driver %s, Vulkan %s: %s%s%s\n", d.index, d.name.c_str(), d.type.c_str(),
                 d.driver.c_str(), d.api_version.c_str(), d.usable ? "usable" : "not usable: ",

@@ -16,6 +16,7 @@
 // vk: a Vulkan device and the plans recorded on it
 #include "vkfuse/vk/context.hpp"
 #include "vkfuse/vk/plan.hpp"
+#include "vkfuse/vk/interop.hpp"  // a caller's own device, buffers, command buffers and shared memory
 
 // sensor: cameras under switched LEDs, recorded datasets, the simulated DIGIT
 #include "vkfuse/sensor/clock.hpp"

@@ -42,11 +42,24 @@ std::unique_ptr<Api> Api::load() {
     api->vkGetInstanceProcAddr = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(lib, "vkGetInstanceProcAddr"));
     if (!api->vkGetInstanceProcAddr)
         throw Error(ErrorKind::Device, "Vulkan loader: vkGetInstanceProcAddr missing from " + name);
+    api->load_global();
+    return api;
+}
+
+std::unique_ptr<Api> Api::adopt(PFN_vkGetInstanceProcAddr get_instance_proc_addr) {
+    if (!get_instance_proc_addr) return load();
+    auto api = std::make_unique<Api>();
+    api->vkGetInstanceProcAddr = get_instance_proc_addr;
+    api->load_global();
+    return api;
+}
+
+void Api::load_global() {
+    Api* api = this;
 #define VKFUSE_LOAD_GLOBAL(name) api->name = reinterpret_cast<PFN_##name>(api->vkGetInstanceProcAddr(nullptr, #name));
     VKFUSE_GLOBAL_FUNCS(VKFUSE_LOAD_GLOBAL)
 #undef VKFUSE_LOAD_GLOBAL
     if (!api->vkCreateInstance) throw Error(ErrorKind::Device, "Vulkan loader: vkCreateInstance unavailable");
-    return api;
 }
 
 void Api::load_instance(VkInstance instance) {
@@ -67,6 +80,9 @@ void Api::load_device(VkDevice device) {
     if (!name) throw Error(ErrorKind::Device, "Vulkan device lacks " #name);
     VKFUSE_DEVICE_FUNCS(VKFUSE_LOAD_DEVICE)
 #undef VKFUSE_LOAD_DEVICE
+#define VKFUSE_LOAD_DEVICE_OPTIONAL(name) name = reinterpret_cast<PFN_##name>(vkGetDeviceProcAddr(device, #name));
+    VKFUSE_DEVICE_OPTIONAL_FUNCS(VKFUSE_LOAD_DEVICE_OPTIONAL)
+#undef VKFUSE_LOAD_DEVICE_OPTIONAL
 }
 
 Api::~Api() {

@@ -25,6 +25,7 @@ namespace vkfuse::vk {
     X(vkGetPhysicalDeviceQueueFamilyProperties)   \
     X(vkGetPhysicalDeviceMemoryProperties)        \
     X(vkCreateDevice)                             \
+    X(vkEnumerateDeviceExtensionProperties)       \
     X(vkGetDeviceProcAddr)
 
 #define VKFUSE_DEBUG_FUNCS(X)            \
@@ -81,7 +82,16 @@ namespace vkfuse::vk {
     X(vkDestroyDescriptorPool)            \
     X(vkAllocateDescriptorSets)           \
     X(vkUpdateDescriptorSets)             \
-    X(vkCmdBindDescriptorSets)
+    X(vkCmdBindDescriptorSets)            \
+    X(vkCmdExecuteCommands)               \
+    X(vkCreateSemaphore)                  \
+    X(vkDestroySemaphore)                 \
+    X(vkWaitSemaphores)
+
+// Extension entry points, loaded where the device has them (null otherwise).
+#define VKFUSE_DEVICE_OPTIONAL_FUNCS(X) \
+    X(vkGetMemoryFdKHR)                 \
+    X(vkGetMemoryHostPointerPropertiesEXT)
 
 #define VKFUSE_DECLARE(name) PFN_##name name = nullptr;
 
@@ -91,11 +101,14 @@ struct Api {
     VKFUSE_INSTANCE_FUNCS(VKFUSE_DECLARE)
     VKFUSE_DEBUG_FUNCS(VKFUSE_DECLARE)
     VKFUSE_DEVICE_FUNCS(VKFUSE_DECLARE)
+    VKFUSE_DEVICE_OPTIONAL_FUNCS(VKFUSE_DECLARE)
     PFN_vkGetInstanceProcAddr vkGetInstanceProcAddr = nullptr;
 
     // dlopen()s the loader (libvulkan.so.1, or the path in VKFUSE_VULKAN_LIBRARY);
     // throws Error(Device) "Vulkan loader libvulkan.so.1 not found".
     static std::unique_ptr<Api> load();
+    // The entry points behind a caller's vkGetInstanceProcAddr (null: load()'s).
+    static std::unique_ptr<Api> adopt(PFN_vkGetInstanceProcAddr get_instance_proc_addr);
     void load_instance(VkInstance instance);  // instance + debug-utils entry points
     void load_device(VkDevice device);        // device entry points (throws if one is missing)
 
@@ -105,7 +118,8 @@ struct Api {
     Api& operator=(const Api&) = delete;
 
 private:
-    void* library_ = nullptr;
+    void* library_ = nullptr;  // null for adopt()ed entry points
+    void load_global();
 };
 
 // Throws Error(Device) "<what>: <VkResult name>" unless result is VK_SUCCESS.

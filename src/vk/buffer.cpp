@@ -3,6 +3,15 @@
 #include <utility>
 
 namespace vkfuse::vk {
+namespace {
+
+VkDeviceAddress device_address(Context::Impl& ctx, VkBuffer buffer) {
+    VkBufferDeviceAddressInfo bai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    bai.buffer = buffer;
+    return ctx.api->vkGetBufferDeviceAddress(ctx.device, &bai);
+}
+
+}  // namespace
 
 Buffer::Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use) : ctx_(&ctx), size_(bytes) {
     auto& api = *ctx.api;
@@ -39,17 +48,38 @@ Buffer::Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use) : ctx_(&ct
         check(api.vkBindBufferMemory(ctx.device, buffer_, memory_, 0), "vkBindBufferMemory");
         if (use != MemoryUse::Device)
             check(api.vkMapMemory(ctx.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
-        VkBufferDeviceAddressInfo bai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
-        bai.buffer = buffer_;
-        address_ = api.vkGetBufferDeviceAddress(ctx.device, &bai);
+        address_ = device_address(ctx, buffer_);
     } catch (...) {
         release();
         throw;
     }
 }
 
+Buffer Buffer::adopt(Context::Impl& ctx, VkBuffer buffer, VkDeviceMemory memory, VkDeviceSize bytes, void* mapped) {
+    Buffer b;
+    b.ctx_ = &ctx;
+    b.buffer_ = buffer;
+    b.memory_ = memory;
+    b.size_ = bytes;
+    b.mapped_ = mapped;
+    b.address_ = device_address(ctx, buffer);
+    return b;
+}
+
+Buffer Buffer::borrow(Context::Impl& ctx, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize bytes) {
+    Buffer b;
+    b.buffer_ = buffer;
+    b.offset_ = offset;
+    b.size_ = bytes;
+    b.address_ = device_address(ctx, buffer);
+    return b;
+}
+
 void Buffer::release() {
-    if (!ctx_) return;
+    if (!ctx_) {  // borrowed, or empty
+        buffer_ = VK_NULL_HANDLE;
+        return;
+    }
     auto& api = *ctx_->api;
     if (buffer_) api.vkDestroyBuffer(ctx_->device, buffer_, nullptr);
     if (memory_) api.vkFreeMemory(ctx_->device, memory_, nullptr);  // unmaps implicitly
@@ -62,7 +92,7 @@ void Buffer::release() {
 Buffer::~Buffer() { release(); }
 
 Buffer::Buffer(Buffer&& o) noexcept
-    : ctx_(std::exchange(o.ctx_, nullptr)), buffer_(std::exchange(o.buffer_, VK_NULL_HANDLE)),
+    : ctx_(std::exchange(o.ctx_, nullptr)), offset_(std::exchange(o.offset_, 0)), buffer_(std::exchange(o.buffer_, VK_NULL_HANDLE)),
       memory_(std::exchange(o.memory_, VK_NULL_HANDLE)), address_(std::exchange(o.address_, 0)),
       size_(std::exchange(o.size_, 0)), mapped_(std::exchange(o.mapped_, nullptr)) {}
 
@@ -70,6 +100,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
     if (this != &o) {
         release();
         ctx_ = std::exchange(o.ctx_, nullptr);
+        offset_ = std::exchange(o.offset_, 0);
         buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
         memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
         address_ = std::exchange(o.address_, 0);

@@ -17,6 +17,11 @@ class Buffer {
 public:
     Buffer() = default;
     Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use);
+    // Takes buffer and memory (bound, mapped at `mapped` or not) to destroy them.
+    static Buffer adopt(Context::Impl& ctx, VkBuffer buffer, VkDeviceMemory memory, VkDeviceSize bytes, void* mapped);
+    // bytes from offset of a buffer someone else owns (a caller's): used,
+    // never destroyed here.
+    static Buffer borrow(Context::Impl& ctx, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize bytes);
     ~Buffer();
     Buffer(Buffer&& other) noexcept;
     Buffer& operator=(Buffer&& other) noexcept;
@@ -24,16 +29,18 @@ public:
     Buffer& operator=(const Buffer&) = delete;
 
     VkBuffer handle() const { return buffer_; }
-    VkDeviceAddress address() const { return address_; }
+    VkDeviceMemory memory() const { return memory_; }  // null for a borrowed range
+    VkDeviceAddress address() const { return address_ + offset_; }
     VkDeviceSize size() const { return size_; }
     void* mapped() const { return mapped_; }  // null for MemoryUse::Device
-    DeviceSpan span() const { return {buffer_, 0, size_, address_}; }
+    DeviceSpan span() const { return {buffer_, offset_, size_, address_}; }
 
 private:
-    Context::Impl* ctx_ = nullptr;
+    Context::Impl* ctx_ = nullptr;  // null for a borrowed range: nothing to release
+    VkDeviceSize offset_ = 0;       // a borrowed range's start in its buffer
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
-    VkDeviceAddress address_ = 0;
+    VkDeviceAddress address_ = 0;  // of the buffer's first byte
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
 

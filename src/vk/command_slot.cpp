@@ -2,10 +2,11 @@
 
 #include <limits>
 #include <mutex>
+#include <vector>
 
 namespace vkfuse::vk {
 
-CommandSlot::CommandSlot(Context::Impl& ctx, std::uint32_t timestamp_queries) : ctx_(ctx) {
+CommandSlot::CommandSlot(Context::Impl& ctx, std::uint32_t timestamp_queries, bool secondary) : ctx_(ctx) {
     auto& api = *ctx.api;
     try {
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -17,8 +18,19 @@ CommandSlot::CommandSlot(Context::Impl& ctx, std::uint32_t timestamp_queries) : 
         cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         cai.commandBufferCount = 1;
         check(api.vkAllocateCommandBuffers(ctx.device, &cai, &cmd_), "vkAllocateCommandBuffers");
+        if (secondary) {
+            cai.level = VK_COMMAND_BUFFER_LEVEL_SECONDARY;
+            check(api.vkAllocateCommandBuffers(ctx.device, &cai, &secondary_), "vkAllocateCommandBuffers");
+        }
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         check(api.vkCreateFence(ctx.device, &fci, nullptr, &fence_), "vkCreateFence");
+        if (secondary) {  // only what callers embed signals a semaphore (vkfuse::submit)
+            VkSemaphoreTypeCreateInfo type{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+            type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+            VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+            sci.pNext = &type;
+            check(api.vkCreateSemaphore(ctx.device, &sci, nullptr, &timeline_), "vkCreateSemaphore");
+        }
         if (timestamp_queries > 0) {
             VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
             qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -35,15 +47,28 @@ CommandSlot::~CommandSlot() { release(); }
 
 void CommandSlot::release() {
     auto& api = *ctx_.api;
-    if (in_flight_) api.vkDeviceWaitIdle(ctx_.device);  // only a submit whose wait failed is still pending
+    // An asynchronous submit (vkfuse::submit) not waited for, or one whose
+    // wait failed (device lost, which ends this wait at once).
+    if (in_flight_) api.vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, std::numeric_limits<std::uint64_t>::max());
     if (fence_) api.vkDestroyFence(ctx_.device, fence_, nullptr);
+    if (timeline_) api.vkDestroySemaphore(ctx_.device, timeline_, nullptr);
+    timeline_ = VK_NULL_HANDLE;
     if (queries_) api.vkDestroyQueryPool(ctx_.device, queries_, nullptr);
-    if (pool_) api.vkDestroyCommandPool(ctx_.device, pool_, nullptr);  // frees cmd_
+    if (pool_) api.vkDestroyCommandPool(ctx_.device, pool_, nullptr);  // frees cmd_ and secondary_
+    secondary_ = VK_NULL_HANDLE;
     fence_ = VK_NULL_HANDLE;
     queries_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
     cmd_ = VK_NULL_HANDLE;
     in_flight_ = false;
+}
+
+void CommandSlot::record_primary() {
+    auto& api = *ctx_.api;
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    check(api.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+    api.vkCmdExecuteCommands(cmd_, 1, &secondary_);
+    check(api.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 }
 
 void CommandSlot::submit() {
@@ -57,6 +82,41 @@ void CommandSlot::submit() {
         check(api.vkQueueSubmit(ctx_.queue, 1, &si, fence_), "vkQueueSubmit");
     }
     in_flight_ = true;
+}
+
+std::uint64_t CommandSlot::submit_signalling(std::span<const SemaphoreWait> waits) {
+    auto& api = *ctx_.api;
+    std::vector<VkSemaphore> semaphores;
+    std::vector<std::uint64_t> values;
+    std::vector<VkPipelineStageFlags> stages;
+    for (const SemaphoreWait& w : waits) {
+        semaphores.push_back(w.semaphore);
+        values.push_back(w.value);
+        stages.push_back(w.stages);
+    }
+    const std::uint64_t signal = timeline_value_ + 1;
+    VkTimelineSemaphoreSubmitInfo tsi{VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
+    tsi.waitSemaphoreValueCount = std::uint32_t(values.size());
+    tsi.pWaitSemaphoreValues = values.data();
+    tsi.signalSemaphoreValueCount = 1;
+    tsi.pSignalSemaphoreValues = &signal;
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.pNext = &tsi;
+    si.waitSemaphoreCount = std::uint32_t(semaphores.size());
+    si.pWaitSemaphores = semaphores.data();
+    si.pWaitDstStageMask = stages.data();
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd_;
+    si.signalSemaphoreCount = 1;
+    si.pSignalSemaphores = &timeline_;
+    check(api.vkResetFences(ctx_.device, 1, &fence_), "vkResetFences");
+    {
+        std::lock_guard lock(ctx_.queue_mutex);  // submissions of one context may come from several threads
+        check(api.vkQueueSubmit(ctx_.queue, 1, &si, fence_), "vkQueueSubmit");
+    }
+    timeline_value_ = signal;
+    in_flight_ = true;
+    return signal;
 }
 
 void CommandSlot::wait() {

@@ -60,6 +60,49 @@ Context::Impl::Impl(const ContextOptions& options)
     }
 }
 
+Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
+    : owns_device(false), device_addresses_only(options.device_addresses_only) {
+    if (!caller.instance || !caller.physical_device || !caller.device)
+        throw Error(ErrorKind::InvalidArgument, "caller device: instance, physical device and device must all be given");
+    api = vk::Api::adopt(caller.get_instance_proc_addr);
+    try {
+        instance = caller.instance;
+        api->load_instance(instance);
+        const auto devices = vk::enumerate_devices(*api, instance);
+        const auto it = std::find_if(devices.begin(), devices.end(),
+                                     [&](const auto& d) { return d.handle == caller.physical_device; });
+        if (it == devices.end())
+            throw Error(ErrorKind::InvalidArgument, "caller device: the physical device is not one of the instance's");
+        if (!it->info.usable) throw Error(ErrorKind::Device, "caller device " + it->info.name + ": " + it->info.why_not);
+        physical = caller.physical_device;
+        info = it->info;
+        // What the device has counts only where the caller enabled it.
+        info.fp16_storage = info.fp16_storage && caller.fp16_storage;
+        info.float64 = info.float64 && caller.shader_float64;
+        info.external_memory_fd = info.external_memory_fd && caller.external_memory_fd;
+        info.external_memory_host = info.external_memory_host && caller.external_memory_host;
+        api->vkGetPhysicalDeviceProperties(physical, &properties);
+        api->vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+        choose_filter_arithmetic(options.filter_arithmetic);
+        std::uint32_t n = 0;
+        api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
+        std::vector<VkQueueFamilyProperties> families(n);
+        api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, families.data());
+        if (caller.queue_family >= n || !(families[caller.queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT))
+            throw Error(ErrorKind::InvalidArgument, "caller device: queue family " + std::to_string(caller.queue_family) +
+                                                        " has no compute queue");
+        queue_family = caller.queue_family;
+        timestamps = families[queue_family].timestampValidBits > 0;
+        device = caller.device;
+        api->load_device(device);
+        api->vkGetDeviceQueue(device, queue_family, caller.queue_index, &queue);
+        create_layout();
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
 void Context::Impl::create_instance(bool validation) {
     std::uint32_t version = VK_API_VERSION_1_0;
     if (api->vkEnumerateInstanceVersion) api->vkEnumerateInstanceVersion(&version);
@@ -156,6 +199,7 @@ void Context::Impl::create_device() {
     VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     f12.bufferDeviceAddress = VK_TRUE;
+    f12.timelineSemaphore = VK_TRUE;  // required of every Vulkan 1.2 device: vkfuse::submit signals one
     // The _fp16 kernels' float16 planes, enabled only where the device has them.
     f11.storageBuffer16BitAccess = info.fp16_storage;
     f12.shaderFloat16 = info.fp16_storage;
@@ -164,10 +208,16 @@ void Context::Impl::create_device() {
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     f2.features.shaderFloat64 = filter_arithmetic == FilterArithmetic::Float64 ? VK_TRUE : VK_FALSE;
     f2.pNext = &f12;
+    // Shared memory (vk/interop.hpp), enabled where the device has it.
+    std::vector<const char*> extensions;
+    if (info.external_memory_fd) extensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    if (info.external_memory_host) extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &f2;
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
+    dci.enabledExtensionCount = std::uint32_t(extensions.size());
+    dci.ppEnabledExtensionNames = extensions.data();
     vk::check(api->vkCreateDevice(physical, &dci, nullptr, &device), "vkCreateDevice");
     api->load_device(device);
     api->vkGetDeviceQueue(device, queue_family, 0, &queue);
@@ -250,24 +300,27 @@ std::uint32_t Context::Impl::memory_type(std::uint32_t type_bits, VkMemoryProper
 Context::Impl::~Impl() { release(); }
 
 void Context::Impl::release() {
-    if (device) {
-        api->vkDeviceWaitIdle(device);
+    // A caller's device may be busy with the caller's own work: vkfuse's
+    // submissions were each waited for by the plan that made them.
+    if (device && owns_device && api->vkDeviceWaitIdle) api->vkDeviceWaitIdle(device);
+    if (device && api->vkDestroyPipeline) {  // null only where loading the device's entry points failed
         for (auto& [name, pipe] : pipelines_) api->vkDestroyPipeline(device, pipe, nullptr);
-        pipelines_.clear();
         if (layout) api->vkDestroyPipelineLayout(device, layout, nullptr);
         if (set_layout) api->vkDestroyDescriptorSetLayout(device, set_layout, nullptr);
-        set_layout = VK_NULL_HANDLE;
-        api->vkDestroyDevice(device, nullptr);
-        device = VK_NULL_HANDLE;
-        layout = VK_NULL_HANDLE;
     }
+    if (device && owns_device && api->vkDestroyDevice) api->vkDestroyDevice(device, nullptr);
+    pipelines_.clear();
+    set_layout = VK_NULL_HANDLE;
+    layout = VK_NULL_HANDLE;
+    device = VK_NULL_HANDLE;
     if (messenger) api->vkDestroyDebugUtilsMessengerEXT(instance, messenger, nullptr);
     messenger = VK_NULL_HANDLE;
-    if (instance) api->vkDestroyInstance(instance, nullptr);
+    if (instance && owns_device) api->vkDestroyInstance(instance, nullptr);
     instance = VK_NULL_HANDLE;
 }
 
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+Context::Context(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Context::~Context() = default;
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;

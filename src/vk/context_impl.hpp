@@ -12,6 +12,7 @@
 #include "vk/api.hpp"
 #include "vk/kernel_interface.hpp"
 #include "vkfuse/vk/context.hpp"
+#include "vkfuse/vk/interop.hpp"
 
 namespace vkfuse {
 
@@ -27,6 +28,9 @@ struct Context::Impl {
     VkPhysicalDeviceMemoryProperties memory{};
     DeviceInfo info;
     bool timestamps = false;  // queue supports timestamp queries
+    // false on a caller's device (vk/interop.hpp): the instance, device and
+    // queue are the caller's, and only vkfuse's own objects are destroyed.
+    bool owns_device = true;
     bool device_addresses_only = false;  // ContextOptions::device_addresses_only
     FilterArithmetic filter_arithmetic = FilterArithmetic::CompensatedFloat32;  // resolved, never Auto
     // Shared by all kernels: set 0 of kMaxKernelBuffers storage buffers (the
@@ -40,6 +44,7 @@ struct Context::Impl {
     std::atomic<std::uint64_t> validation_messages{0};
 
     explicit Impl(const ContextOptions& options);
+    Impl(const CallerDevice& caller, const ContextOptions& options);  // make_context()
     ~Impl();
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
@@ -83,6 +88,7 @@ namespace vk {
 // Vulkan type is part of ordinary use).
 struct ContextAccess {
     static Context::Impl& of(Context& context) { return context.impl(); }
+    static Context adopt(std::unique_ptr<Context::Impl> impl) { return Context(std::move(impl)); }
 };
 
 }  // namespace vk

@@ -1,5 +1,7 @@
 #include "vk/device_info.hpp"
 
+#include <cstring>
+
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
@@ -59,6 +61,14 @@ PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
     }
     e.info.fp16_storage = f11.storageBuffer16BitAccess && f12.shaderFloat16;
     e.info.float64 = f.features.shaderFloat64;
+    std::uint32_t n = 0;
+    api.vkEnumerateDeviceExtensionProperties(dev, nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> extensions(n);
+    api.vkEnumerateDeviceExtensionProperties(dev, nullptr, &n, extensions.data());
+    for (const auto& x : extensions) {
+        if (std::strcmp(x.extensionName, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) == 0) e.info.external_memory_fd = true;
+        if (std::strcmp(x.extensionName, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME) == 0) e.info.external_memory_host = true;
+    }
     e.info.usable = true;
     return e;
 }

@@ -56,14 +56,16 @@ std::string kernel_variant(Precision p) { return p == Precision::Fp16Storage ? "
 
 std::string_view to_string(Precision p) { return p == Precision::Fp16Storage ? "fp16" : "fp32"; }
 
-Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind plan_kind)
-    : ctx(context), cfg(config), kind(plan_kind) {
+Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind plan_kind, const PlanBuffers* io)
+    : ctx(context), cfg(config), kind(plan_kind), embedded(io != nullptr) {
     validate_config(cfg, kind);
     check_precision(cfg, ctx.info);
+    if (io) borrow_buffers(*io);
     const std::size_t frame_bytes = std::size_t(cfg.height) * cfg.width * cfg.channels * pixel_bytes(cfg.input);
     const std::size_t plane_floats = std::size_t(cfg.height) * cfg.width;
     const std::size_t sensor_floats = plane_floats * cfg.channels;
-    upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
+    if (!device_frames.handle())
+        upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
     if (cfg.metrics.has(Metric::BackgroundDiff)) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
     const std::size_t S = std::size_t(cfg.sensors);
     if (cfg.input == PixelType::F32 && brovey()) {
@@ -77,7 +79,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
         background_max.assign(S, 0);
         background_exponent.assign(S, std::nullopt);
     }
-    const std::size_t fused_bytes = cfg.want_fused ? sensor_floats * cfg.sensors * 4 : 0;
+    const std::size_t fused_bytes = cfg.want_fused && !device_fused.handle() ? sensor_floats * cfg.sensors * 4 : 0;
     // Partials start on a boundary any device accepts as a binding offset.
     partials_offset = (fused_bytes + 255) / 256 * 256;
     const std::size_t partial_bytes =
@@ -86,8 +88,9 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     if (cfg.profile && !ctx.timestamps)
         throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
     // Should anything here throw, the members built so far release themselves.
-    slot.emplace(ctx, cfg.profile ? vk::Recorder::kMaxTimestamps : 0);
+    slot.emplace(ctx, cfg.profile ? vk::Recorder::kMaxTimestamps : 0, embedded);
     record();
+    if (embedded) slot->record_primary();
     background_set.assign(std::size_t(cfg.sensors), false);
     fused.resize(std::size_t(cfg.sensors));
     fused_fresh.assign(std::size_t(cfg.sensors), false);
@@ -96,18 +99,25 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
 void Plan::Impl::record() {
     addressed = ctx.device_addresses_only || vk::needs_device_addresses(cfg, ctx.properties.limits);
     sets.emplace(ctx);
-    vk::Recorder rec(ctx, slot->cmd(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed);
+    vk::Recorder rec(ctx, slot->recording_target(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed,
+                     embedded);
     if (cfg.skip.policy != SkipPolicy::Off) {
         skip.emplace(ctx, cfg, upload, addressed);
         rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, std::uint32_t(cfg.sensors));
         background_in_slot.assign(std::size_t(cfg.sensors), -1);
     }
-    vk::GraphBuilder g{ctx, cfg, rec, buffers, thresholds.address(), {&upload, &background, &readback, &thresholds}};
+    vk::GraphBuilder g{ctx,
+                       cfg,
+                       rec,
+                       buffers,
+                       thresholds.address(),
+                       {&upload, &background, &readback, &thresholds, &device_frames, &device_fused}};
     if (skip) g.sparse = skip->sparse();
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
     const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
-    const vk::DeviceSpan frames = upload.span(), image = readback.span().sub(0, partials_offset);
+    const vk::DeviceSpan frames = device_frames.handle() ? device_frames.span() : upload.span();
+    const vk::DeviceSpan image = device_fused.handle() ? device_fused.span() : readback.span().sub(0, partials_offset);
     const std::optional<vk::DeviceSpan> wanted_image = cfg.want_fused ? std::optional(image) : std::nullopt;
     VkDeviceAddress fused_planes = 0;
     bool pointwise = false;  // the fusion kernel wrote the image itself
@@ -328,9 +338,23 @@ void upload_f32(Plan::Impl& im, std::span<const FrameView> frames) {
 
 }  // namespace
 
-void Plan::run(std::span<const FrameView> frames) {
-    auto& im = *impl_;
-    const auto& c = im.cfg;
+void Plan::Impl::check_ready() const {
+    if (cfg.metrics.has(Metric::BackgroundDiff))
+        for (int s = 0; s < cfg.sensors; ++s)
+            if (!background_set[std::size_t(s)])
+                throw Error(ErrorKind::InvalidArgument, "plan run: no background set for sensor " + std::to_string(s));
+    if (skip)
+        for (int s = 0; s < cfg.sensors; ++s)
+            if (!skip->has_reference(s))
+                throw Error(ErrorKind::InvalidArgument, "plan run: no skip reference set for sensor " + std::to_string(s));
+}
+
+void Plan::Impl::upload_frames(std::span<const FrameView> frames) {
+    auto& im = *this;
+    const auto& c = cfg;
+    if (device_frames.handle())
+        throw Error(ErrorKind::InvalidArgument, "plan run: this plan reads its frames from a device buffer "
+                                                "(PlanBuffers::frames); give it none");
     const std::size_t expected = std::size_t(c.sensors) * c.frames;
     if (frames.size() != expected)
         throw Error(ErrorKind::InvalidArgument, "plan run: got " + std::to_string(frames.size()) + " frames, expected " +
@@ -338,14 +362,7 @@ void Plan::run(std::span<const FrameView> frames) {
                                                     std::to_string(c.frames) + " = " + std::to_string(expected));
     for (std::size_t i = 0; i < frames.size(); ++i)
         check_view(frames[i], c, "frame " + std::to_string(i % c.frames) + " of sensor " + std::to_string(i / c.frames));
-    if (c.metrics.has(Metric::BackgroundDiff))
-        for (int s = 0; s < c.sensors; ++s)
-            if (!im.background_set[std::size_t(s)])
-                throw Error(ErrorKind::InvalidArgument, "plan run: no background set for sensor " + std::to_string(s));
-    if (im.skip)
-        for (int s = 0; s < c.sensors; ++s)
-            if (!im.skip->has_reference(s))
-                throw Error(ErrorKind::InvalidArgument, "plan run: no skip reference set for sensor " + std::to_string(s));
+    check_ready();
     if (c.input == PixelType::F32) {
         upload_f32(im, frames);
     } else {  // 8-bit frames, in [0, 1] on the device: as they are
@@ -354,6 +371,29 @@ void Plan::run(std::span<const FrameView> frames) {
             std::memcpy(dst, f.data, f.bytes());
             dst += f.bytes();
         }
+    }
+}
+
+void Plan::Impl::complete() {
+    has_run = true;
+    std::fill(fused_fresh.begin(), fused_fresh.end(), false);
+}
+
+void Plan::Impl::finish_pending() {
+    if (!pending) return;
+    pending = false;
+    slot->wait();
+    complete();
+}
+
+void Plan::run(std::span<const FrameView> frames) {
+    auto& im = *impl_;
+    const auto& c = im.cfg;
+    im.finish_pending();  // the upload buffer may still be read by an asynchronous submit
+    if (im.device_frames.handle() && frames.empty()) {
+        im.check_ready();
+    } else {
+        im.upload_frames(frames);
     }
     if (im.skip) {
         // SkipPolicy::Static: the results of the sensors the last run fused
@@ -370,13 +410,15 @@ void Plan::run(std::span<const FrameView> frames) {
         im.fused_last_run = true;
     }
     if (im.fused_last_run) im.submit_and_wait();
-    im.has_run = true;
-    std::fill(im.fused_fresh.begin(), im.fused_fresh.end(), false);
+    im.complete();
 }
 
 const Image& Plan::fused(int sensor) const {
     auto& im = *impl_;
     if (!im.cfg.want_fused) throw Error(ErrorKind::InvalidArgument, "plan: created without want_fused");
+    if (im.device_fused.handle())
+        throw Error(ErrorKind::InvalidArgument, "plan: the fused image is written to the caller's buffer "
+                                                "(PlanBuffers::fused), not read back");
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: fused() before run()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");

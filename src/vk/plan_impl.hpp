@@ -128,7 +128,15 @@ struct Plan::Impl {
     Context::Impl& ctx;
     PlanConfig cfg;
     vk::PlanKind kind;
-    vk::Buffer upload;      // frames as given, host-written each run
+    // Made by make_plan() (vk/interop.hpp): the cycle is recorded into the
+    // slot's secondary command buffer, which callers' command buffers execute.
+    bool embedded = false;
+    // PlanBuffers ranges of the caller's (borrowed; null handles when unused):
+    // the frames read in place of upload's, the fused image written in place
+    // of readback's.
+    vk::Buffer device_frames, device_fused;
+    bool pending = false;   // submit()ted and not yet waited for
+    vk::Buffer upload;      // frames as given, host-written each run (none with device_frames)
     vk::Buffer background;  // planar float backgrounds, host-written by set_background
     vk::Buffer readback;    // fused HWC images, then the metric partials
     vk::Buffer thresholds;  // Brovey, float32 input: GraphBuilder::brovey_thresholds
@@ -163,7 +171,8 @@ struct Plan::Impl {
     std::vector<std::uint32_t> background_max;
     std::vector<std::optional<int>> background_exponent;
 
-    Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind plan_kind);
+    // io: make_plan()'s buffers (an embedded plan), or null.
+    Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind plan_kind, const PlanBuffers* io = nullptr);
     // A plan of an internal kind (BackgroundMean): what Plan's public
     // constructor cannot make.
     static Plan make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind);
@@ -178,6 +187,27 @@ struct Plan::Impl {
 
     void record();
     void submit_and_wait();
+    // make_plan()'s buffers, checked against the plan (vk/interop.cpp).
+    void borrow_buffers(const PlanBuffers& io);
+    // Throws unless every background and skip reference the plan needs is set.
+    void check_ready() const;
+    // Host frames into the upload buffer, checked (count, shapes, values).
+    void upload_frames(std::span<const FrameView> frames);
+    // A cycle ended: its results are what fused() and metrics() read.
+    void complete();
+    // An asynchronous submit still pending is waited for.
+    void finish_pending();
 };
+
+namespace vk {
+
+// The library's access to a Plan's internals (vk/interop.cpp).
+struct PlanAccess {
+    static Plan::Impl& of(Plan& plan) { return *plan.impl_; }
+    static const Plan::Impl& of(const Plan& plan) { return *plan.impl_; }
+    static Plan make(std::unique_ptr<Plan::Impl> impl) { return Plan(std::move(impl)); }
+};
+
+}  // namespace vk
 
 }  // namespace vkfuse

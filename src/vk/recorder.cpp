@@ -15,10 +15,15 @@ PushConstants& PushConstants::put(const void* v, std::size_t n) {
 }
 
 Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
-                   DescriptorSets& sets, bool addressed)
+                   DescriptorSets& sets, bool addressed, bool secondary)
     : ctx_(ctx), cmd_(cmd), queries_(queries), variant_(precision + (addressed ? "_addr" : "")), sets_(sets),
       addressed_(addressed) {
+    VkCommandBufferInheritanceInfo inheritance{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    if (secondary) {
+        bi.flags = VK_COMMAND_BUFFER_USAGE_SIMULTANEOUS_USE_BIT;
+        bi.pInheritanceInfo = &inheritance;
+    }
     check(ctx.api->vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
     if (queries_) {
         ctx.api->vkCmdResetQueryPool(cmd_, queries_, 0, kMaxTimestamps);

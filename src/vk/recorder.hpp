@@ -22,8 +22,10 @@ public:
     // `addressed`, as device addresses (the kernels' "_addr" variants). A
     // kernel built in both filter arithmetics (shaders/compensated.glsl) runs
     // in the one the context chose: "_f64" before the rest where it is float64.
+    // A secondary cmd is begun for simultaneous use outside any render pass
+    // (CommandSlot's secondary, executed by its primary and by callers).
     Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
-             DescriptorSets& sets, bool addressed);
+             DescriptorSets& sets, bool addressed, bool secondary = false);
 
     // Records shader over groups (x, y, z) with `buffers` in the order of its
     // BUFFERS list (shaders/bindings.glsl) and `scalars`, the rest of its

@@ -22,6 +22,9 @@ struct DeviceInfo {
     std::string why_not;      // when !usable, the missing capability
     bool fp16_storage = false;  // 16-bit storage buffers and float16 in shaders: Precision::Fp16Storage
     bool float64 = false;       // double arithmetic in shaders: FilterArithmetic::Float64
+    // Memory shared with other devices and the host (vk/interop.hpp, DeviceMemory).
+    bool external_memory_fd = false;    // VK_KHR_external_memory_fd
+    bool external_memory_host = false;  // VK_EXT_external_memory_host
 };
 
 // How the wavelet filters accumulate an output before rounding it to float
@@ -72,6 +75,7 @@ public:
 
 private:
     friend struct vk::ContextAccess;  // the library's own way to its device
+    explicit Context(std::unique_ptr<Impl> impl);  // on a caller's device (vk/interop.hpp)
     Impl& impl() { return *impl_; }
     std::unique_ptr<Impl> impl_;
 };

@@ -14,6 +14,9 @@
 #include "vkfuse/vk/context.hpp"
 
 namespace vkfuse {
+namespace vk {
+struct PlanAccess;
+}
 
 // How a plan stores the planes it keeps on the device between kernels
 // (unpacked frames, pyramid levels, wavelet coefficients, fused planes).
@@ -97,6 +100,8 @@ public:
     // multiplied by a power of two on the way to the device and its results
     // by its inverse on the way back (docs/architecture.md, "Magnitudes").
     // NaN or Inf in a frame: Error(Numeric) naming it, as for the reference.
+    // A plan reading its frames from a device buffer (vk/interop.hpp,
+    // PlanBuffers::frames) takes an empty span.
     void run(std::span<const FrameView> frames);
 
     // Results of the last run(). Error(Numeric) where a fused value lies
@@ -115,6 +120,7 @@ public:
     struct Impl;
 
 private:
+    friend struct vk::PlanAccess;               // make_plan() and the interop calls (vk/interop.hpp)
     explicit Plan(std::unique_ptr<Impl> impl);  // the library's internal plan kinds
     std::unique_ptr<Impl> impl_;
 };

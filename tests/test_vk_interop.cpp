@@ -1,0 +1,278 @@
+// vkfuse embedded in a caller's Vulkan work (vkfuse/vk/interop.hpp): a
+// Context on the caller's device, plans reading and writing the caller's
+// buffers, recorded into its command buffers or submitted against a timeline
+// semaphore, and memory shared between two devices and with the host. Every
+// fused image is checked bit for bit against an ordinary Plan of the same
+// configuration (itself checked against the reference elsewhere), and the
+// caller's validation layer must stay silent.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "caller_vulkan.hpp"
+#include "expect_error.hpp"
+#include "test_support.hpp"
+#include "vk_fixture.hpp"
+#include "vkfuse/vk/interop.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+constexpr int kH = 96, kW = 128, kC = 3, kK = 3, kS = 2;  // K = 3: channel-sum needs it
+
+caller::Device& caller_device() {
+    static caller::Device device(/*validation=*/true);
+    return device;
+}
+
+Context& caller_context() {
+    static Context context = make_context(caller_device().describe());
+    return context;
+}
+
+class Interop : public VulkanTest {
+protected:
+    void SetUp() override {
+        VulkanTest::SetUp();
+        caller_context();
+        messages_ = caller_device().validation_messages();
+    }
+    void TearDown() override {
+        EXPECT_EQ(caller_device().validation_messages(), messages_) << "the caller's validation layer spoke";
+        VulkanTest::TearDown();
+    }
+
+private:
+    std::uint64_t messages_ = 0;
+};
+
+PlanConfig config_of(Method method, PixelType input) {
+    PlanConfig c;
+    c.fusion.method = method;
+    c.height = kH;
+    c.width = kW;
+    c.channels = kC;
+    c.frames = kK;
+    c.sensors = kS;
+    c.input = input;
+    return c;
+}
+
+// S*K frames of the config's shape, as the bytes a device buffer holds.
+std::vector<std::uint8_t> frame_bytes(const PlanConfig& c, std::uint32_t seed) {
+    const std::size_t n = std::size_t(c.height) * c.width * c.channels;
+    const std::size_t pixel = c.input == PixelType::U8 ? 1 : 4;
+    std::vector<std::uint8_t> bytes(n * pixel * c.frames * c.sensors);
+    for (int f = 0; f < c.frames * c.sensors; ++f) {
+        const ImageD img = structured_image(c.height, c.width, c.channels, seed + std::uint32_t(f));
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t at = std::size_t(f) * n + i;
+            if (pixel == 1) {
+                bytes[at] = std::uint8_t(std::lround(std::clamp(img.data[i], 0.0, 1.0) * 255));
+            } else {
+                const float v = float(img.data[i]);
+                std::memcpy(&bytes[at * 4], &v, 4);
+            }
+        }
+    }
+    return bytes;
+}
+
+std::vector<FrameView> views_of(const PlanConfig& c, const std::vector<std::uint8_t>& bytes) {
+    std::vector<FrameView> views;
+    const std::size_t frame = std::size_t(c.height) * c.width * c.channels * (c.input == PixelType::U8 ? 1 : 4);
+    for (int f = 0; f < c.frames * c.sensors; ++f)
+        views.push_back({bytes.data() + f * frame, c.height, c.width, c.channels, c.input});
+    return views;
+}
+
+// An ordinary plan's results: what every embedded way must reproduce exactly.
+struct Expected {
+    std::vector<float> fused;  // S images, HWC
+    std::vector<Metrics> metrics;
+};
+
+Expected ordinary(const PlanConfig& c, const std::vector<std::uint8_t>& bytes) {
+    Plan plan(shared_context(), c);
+    plan.run(views_of(c, bytes));
+    Expected e;
+    for (int s = 0; s < c.sensors; ++s) {
+        const Image& f = plan.fused(s);
+        e.fused.insert(e.fused.end(), f.data.begin(), f.data.end());
+        e.metrics.push_back(plan.metrics(s));
+    }
+    return e;
+}
+
+void expect_same(const Expected& e, const float* fused, const Plan& plan, const std::string& what) {
+    EXPECT_EQ(std::memcmp(e.fused.data(), fused, e.fused.size() * 4), 0) << what << ": fused images differ";
+    for (int s = 0; s < int(e.metrics.size()); ++s) {
+        EXPECT_EQ(plan.metrics(s).sharpness, e.metrics[std::size_t(s)].sharpness) << what;
+        EXPECT_EQ(plan.metrics(s).contrast, e.metrics[std::size_t(s)].contrast) << what;
+    }
+}
+
+std::size_t fused_bytes(const PlanConfig& c) { return std::size_t(c.height) * c.width * c.channels * c.sensors * 4; }
+
+TEST_F(Interop, TheCallersDeviceIsTheOneTheContextUses) {
+    Context& ctx = caller_context();
+    EXPECT_EQ(ctx.device().name, shared_context().device().name);
+    EXPECT_EQ(ctx.filter_arithmetic(), shared_context().filter_arithmetic());
+    EXPECT_EQ(ctx.device().external_memory_fd, caller_device().describe().external_memory_fd);
+}
+
+TEST_F(Interop, RecordedIntoTheCallersCommandBufferEveryMethodAndInput) {
+    caller::Device& dev = caller_device();
+    for (Method method : {Method::Wavelet, Method::Laplacian, Method::Brovey, Method::ChannelSum})
+        for (PixelType input : {PixelType::U8, PixelType::F32}) {
+            const PlanConfig c = config_of(method, input);
+            const std::string what = std::string(to_string(method)) + (input == PixelType::U8 ? " u8" : " f32");
+            const std::vector<std::uint8_t> bytes = frame_bytes(c, 11);
+            caller::HostBuffer frames = dev.buffer(bytes.size()), fused = dev.buffer(fused_bytes(c));
+            std::memcpy(frames.mapped, bytes.data(), bytes.size());
+            std::memset(fused.mapped, 0xff, fused.size);
+            Plan plan = make_plan(caller_context(), c, {frames.range(), fused.range()});
+            VkCommandBuffer cmd = dev.begin();
+            record(plan, cmd);
+            dev.submit_and_wait(cmd);
+            finished(plan);
+            expect_same(ordinary(c, bytes), static_cast<const float*>(fused.mapped), plan, what);
+            expect_error([&] { plan.fused(0); }, "plan", ErrorKind::InvalidArgument, "caller's buffer");
+        }
+}
+
+TEST_F(Interop, RunReadsTheFramesWhereTheyLieOnTheDevice) {
+    const PlanConfig c = config_of(Method::Wavelet, PixelType::U8);
+    caller::Device& dev = caller_device();
+    const std::vector<std::uint8_t> bytes = frame_bytes(c, 3);
+    // An offset range: the frames start 256 bytes into the caller's buffer.
+    caller::HostBuffer frames = dev.buffer(bytes.size() + 256);
+    std::memcpy(static_cast<std::uint8_t*>(frames.mapped) + 256, bytes.data(), bytes.size());
+    Plan plan = make_plan(caller_context(), c, {frames.range(256), {}});
+    plan.run({});
+    const Expected e = ordinary(c, bytes);
+    std::vector<float> fused;
+    for (int s = 0; s < kS; ++s) fused.insert(fused.end(), plan.fused(s).data.begin(), plan.fused(s).data.end());
+    expect_same(e, fused.data(), plan, "run({})");
+    const auto views = views_of(c, bytes);
+    expect_error([&] { plan.run(views); }, "plan run", ErrorKind::InvalidArgument, "device buffer");
+}
+
+TEST_F(Interop, SubmitSignalsTheTimelineTheCallersWorkWaitsOn) {
+    const PlanConfig c = config_of(Method::Laplacian, PixelType::F32);
+    caller::Device& dev = caller_device();
+    caller::HostBuffer fused = dev.buffer(fused_bytes(c)), copy = dev.buffer(fused_bytes(c));
+    Plan plan = make_plan(caller_context(), c, {{}, fused.range()});
+    for (std::uint32_t cycle = 0; cycle < 3; ++cycle) {
+        const std::vector<std::uint8_t> bytes = frame_bytes(c, 20 + cycle);
+        upload(plan, views_of(c, bytes));
+        const std::uint64_t value = submit(plan);
+        EXPECT_EQ(value, cycle + 1);
+        // The caller's own submission starts once the plan's cycle ended.
+        VkCommandBuffer cmd = dev.begin();
+        const VkBufferCopy region{0, 0, fused_bytes(c)};
+        vkCmdCopyBuffer(cmd, fused.buffer, copy.buffer, 1, &region);
+        VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr,
+                             0, nullptr);
+        dev.submit_and_wait(cmd, timeline(plan), value);
+        wait(plan);
+        std::uint64_t reached = 0;
+        ASSERT_EQ(vkGetSemaphoreCounterValue(dev.device(), timeline(plan), &reached), VK_SUCCESS);
+        EXPECT_EQ(reached, value);
+        expect_same(ordinary(c, bytes), static_cast<const float*>(copy.mapped), plan,
+                    "cycle " + std::to_string(cycle));
+    }
+    EXPECT_EQ(plan.submits(), 3u);
+}
+
+TEST_F(Interop, BadBuffersAndCallsGetOneLine) {
+    caller::Device& dev = caller_device();
+    const PlanConfig c = config_of(Method::Wavelet, PixelType::U8);
+    caller::HostBuffer big = dev.buffer(fused_bytes(c) + 256);
+    expect_error([&] { make_plan(caller_context(), c, {big.range(8), {}}); }, "make_plan frames buffer",
+                 ErrorKind::InvalidArgument, "offset 8 is not a multiple of");
+    const BufferRange small{big.buffer, 0, 100};
+    expect_error([&] { make_plan(caller_context(), c, {small, {}}); }, "make_plan frames buffer",
+                 ErrorKind::InvalidArgument, "100 bytes, the plan needs");
+    expect_error([&] { make_plan(caller_context(), c, {{}, small}); }, "make_plan fused buffer",
+                 ErrorKind::InvalidArgument, "100 bytes");
+    PlanConfig no_image = c;
+    no_image.want_fused = false;
+    expect_error([&] { make_plan(caller_context(), no_image, {{}, big.range()}); }, "make_plan",
+                 ErrorKind::InvalidArgument, "without want_fused");
+    PlanConfig skipping = c;
+    skipping.skip.policy = SkipPolicy::Idle;
+    expect_error([&] { make_plan(caller_context(), skipping); }, "make_plan", ErrorKind::InvalidArgument, "skip off");
+    Plan own(caller_context(), c);
+    VkCommandBuffer cmd = dev.begin();
+    expect_error([&] { record(own, cmd); }, "record", ErrorKind::InvalidArgument, "not made by vkfuse::make_plan");
+    dev.submit_and_wait(cmd);
+    expect_error([&] { submit(own); }, "submit", ErrorKind::InvalidArgument, "not made by vkfuse::make_plan");
+    CallerDevice none;
+    expect_error([&] { make_context(none); }, "caller device", ErrorKind::InvalidArgument, "must all be given");
+    CallerDevice wrong_family = dev.describe();
+    wrong_family.queue_family = 99;
+    expect_error([&] { make_context(wrong_family); }, "caller device", ErrorKind::InvalidArgument, "queue family 99");
+}
+
+// Device A is the caller's (caller_vulkan.hpp), device B vkfuse's own
+// (shared_context(): another instance and VkDevice). A's frames reach B
+// through an opaque fd; B's fused image comes back to A the same way.
+TEST_F(Interop, FramesFromAnotherDeviceAndTheFusedImageBack) {
+    Context& a = caller_context();
+    Context& b = shared_context();
+    if (!a.device().external_memory_fd || !b.device().external_memory_fd)
+        GTEST_SKIP() << a.device().name << " has no VK_KHR_external_memory_fd";
+    const PlanConfig c = config_of(Method::Wavelet, PixelType::U8);
+    const std::vector<std::uint8_t> bytes = frame_bytes(c, 40);
+    DeviceMemory frames_a = DeviceMemory::allocate_exportable(a, bytes.size());
+    ASSERT_NE(frames_a.mapped(), nullptr) << "lavapipe's memory is host-visible";
+    std::memcpy(frames_a.mapped(), bytes.data(), bytes.size());
+    DeviceMemory frames_b = DeviceMemory::import_fd(b, frames_a.export_fd(), frames_a.size());
+    DeviceMemory fused_b = DeviceMemory::allocate_exportable(b, fused_bytes(c));
+    Plan plan = make_plan(b, c, {frames_b.range(), fused_b.range()});
+    plan.run({});
+    DeviceMemory fused_a = DeviceMemory::import_fd(a, fused_b.export_fd(), fused_b.size());
+    ASSERT_NE(fused_a.mapped(), nullptr);
+    expect_same(ordinary(c, bytes), static_cast<const float*>(fused_a.mapped()), plan, "through two fds");
+    expect_error([&] { (void)frames_b.export_fd(); }, "export_fd", ErrorKind::InvalidArgument, "allocate_exportable");
+    expect_error([&] { DeviceMemory::import_fd(b, -1, 4096); }, "import_fd", ErrorKind::InvalidArgument, "not open");
+}
+
+struct FreeAligned {
+    void operator()(void* p) const { std::free(p); }
+};
+
+TEST_F(Interop, HostMemoryIsReadInPlaceWithNoStagingCopy) {
+    Context& ctx = shared_context();
+    const VkDeviceSize align = DeviceMemory::host_pointer_alignment(ctx);
+    if (!ctx.device().external_memory_host) GTEST_SKIP() << ctx.device().name << " has no VK_EXT_external_memory_host";
+    const PlanConfig c = config_of(Method::Laplacian, PixelType::U8);
+    const std::vector<std::uint8_t> first = frame_bytes(c, 50), second = frame_bytes(c, 60);
+    const std::size_t bytes = (first.size() + align - 1) / align * align;
+    std::unique_ptr<void, FreeAligned> host(std::aligned_alloc(align, bytes));
+    std::memcpy(host.get(), first.data(), first.size());
+    DeviceMemory imported = DeviceMemory::import_host(ctx, host.get(), bytes);
+    EXPECT_EQ(imported.mapped(), host.get());
+    Plan plan = make_plan(ctx, c, {imported.range(), {}});
+    for (const auto* frames : {&first, &second}) {
+        // The host writes its memory; the next run sees it, with no upload.
+        std::memcpy(host.get(), frames->data(), frames->size());
+        plan.run({});
+        std::vector<float> fused;
+        for (int s = 0; s < kS; ++s) fused.insert(fused.end(), plan.fused(s).data.begin(), plan.fused(s).data.end());
+        expect_same(ordinary(c, *frames), fused.data(), plan, "host memory");
+    }
+    expect_error([&] { DeviceMemory::import_host(ctx, static_cast<std::uint8_t*>(host.get()) + 1, align); },
+                 "import_host", ErrorKind::InvalidArgument, "multiples of " + std::to_string(align));
+}
+
+}  // namespace
+}  // namespace vkfuse::test
