@@ -59,23 +59,6 @@ FusionSpec with_method(const Args& args, FusionSpec base) {
     return base;
 }
 
-// A dataset from `vkfuse sim` keeps no run settings: as many background frames
-// per setting as every sensor holds for every setting of the sequence.
-int recorded_background_frames(const Dataset& d, const IlluminationSequence& sequence) {
-    std::size_t fewest = std::numeric_limits<std::size_t>::max();
-    for (const DatasetSensorRecord& s : d.sensors) {
-        for (const Illumination& setting : sequence) {
-            std::size_t n = 0;
-            for (const DatasetTake& t : s.takes)
-                if (t.background)
-                    n += std::size_t(std::count_if(t.frames.begin(), t.frames.end(),
-                                                   [&](const DatasetFrame& f) { return f.illumination == setting; }));
-            fewest = std::min(fewest, n);
-        }
-    }
-    return int(fewest);
-}
-
 void metric_options(const Args& args, RunOptions& o) {
     const bool background = o.background_frames > 0;
     o.metrics = MetricSet::all().with(Metric::BackgroundDiff, background);
@@ -159,7 +142,7 @@ void adopt_recording(RunOptions& o, const Args& args, const Dataset& d) {
         o.object = objects.front();
     }
     o.sensors = int(d.sensors.size());
-    o.background_frames = d.run ? d.run->background_frames : recorded_background_frames(d, o.sequence);
+    o.background_frames = d.background_frames(o.sequence);
     background_options(args, o);  // the recording's background decides whether skipping can be on
 }
 

@@ -19,6 +19,8 @@
 #include <optional>
 
 #include "arrays.hpp"
+#include "shared.hpp"
+#include "rig.hpp"
 #include "sensors.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"
@@ -48,6 +50,8 @@ Device& device() {
     });
     return d;
 }
+
+}  // namespace
 
 // The context `backend` asks for, or nullptr for the CPU reference path.
 Context* open_backend(const std::string& backend) {
@@ -80,6 +84,8 @@ py::dict to_dict(const Metrics& m, MetricSet which) {
     if (m.background_diff) d["background_diff"] = *m.background_diff;
     return d;
 }
+
+namespace {
 
 MetricSet metric_set(const std::vector<std::string>& names) {
     std::string list;
@@ -310,4 +316,5 @@ PYBIND11_MODULE(_vkfuse, m) {
         .def("cpp_cycle_ms", &PyPlan::cpp_cycle_ms, py::arg("frames"), py::arg("runs") = 20,
              "Median ms of Plan::run timed in C++ (the baseline plan.run's overhead is measured against).");
     def_sensors(m);
+    def_rig(m);
 }

@@ -9,9 +9,11 @@ device or the double-precision CPU reference path, and scores them
     plan = vkfuse.Plan(240, 320, frames=2)               # built once per shape and method
     fused, scores = plan.run([white, green])             # every cycle
     white, green = vkfuse.SimDigit(object="coin").capture([(15, 15, 15), (0, 15, 0)])
+    for cycle in vkfuse.Rig(sensors=2).cycles(10): cycle["sensors"][0]["metrics"]
+    for f in vkfuse.Dataset("grid").frames("SIM-0001", "coin"): f["pixels"]
 
 Bad arguments and shapes raise ValueError; everything else vkfuse.Error.
 """
-from ._vkfuse import Error, Plan, SimDigit, __version__, fuse, metrics
+from ._vkfuse import Dataset, Error, Plan, Rig, SimDigit, __version__, fuse, metrics
 
-__all__ = ["Error", "Plan", "SimDigit", "__version__", "fuse", "metrics"]
+__all__ = ["Dataset", "Error", "Plan", "Rig", "SimDigit", "__version__", "fuse", "metrics"]

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "io/file_bytes.hpp"
 #include "io/path_component.hpp"
@@ -37,6 +38,21 @@ std::vector<std::string> Dataset::objects() const {
         for (const DatasetTake& t : s.takes)
             if (!t.background && std::find(out.begin(), out.end(), t.object) == out.end()) out.push_back(t.object);
     return out;
+}
+
+int Dataset::background_frames(const IlluminationSequence& sequence) const {
+    if (run) return run->background_frames;
+    std::size_t fewest = std::numeric_limits<std::size_t>::max();
+    for (const DatasetSensorRecord& s : sensors)
+        for (const Illumination& setting : sequence) {
+            std::size_t n = 0;
+            for (const DatasetTake& t : s.takes)
+                if (t.background)
+                    n += std::size_t(std::count_if(t.frames.begin(), t.frames.end(),
+                                                   [&](const DatasetFrame& f) { return f.illumination == setting; }));
+            fewest = std::min(fewest, n);
+        }
+    return sensors.empty() || sequence.empty() ? 0 : int(fewest);
 }
 
 Dataset read_dataset(const std::string& directory) {

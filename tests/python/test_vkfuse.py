@@ -4,6 +4,7 @@ float64, and the Vulkan backend against the CPU reference (docs/spec.md,
 "Tolerances"). Run by ctest (python.vkfuse) with PYTHONPATH at the build's
 python/ folder and VKFUSE_PEERS at bench/peers."""
 import os
+import subprocess
 import sys
 import threading
 import time
@@ -208,3 +209,64 @@ def test_the_simulated_digit_captures_each_setting_lit_alone():
         sim.capture([(15, 15)])
     with pytest.raises(ValueError, match="unknown object|object"):
         vkfuse.SimDigit(object="teapot")
+
+
+@pytest.mark.parametrize("backend", ["cpu", pytest.param("vulkan", marks=needs_vulkan)])
+def test_a_rig_of_simulated_digits_yields_cycles_as_arrays_and_dicts(backend):
+    rig = vkfuse.Rig(sensors=2, sequence=[(15, 15, 15), (0, 15, 0)], object="coin", backend=backend)
+    assert rig.sensors == ["SIM-0001", "SIM-0002"] and rig.backend == backend
+    cycles = rig.cycles(2)
+    assert [c["cycle"] for c in cycles] == [0, 1]
+    for cycle in cycles:
+        for s in cycle["sensors"]:
+            assert s["status"] == "ok" and s["error"] == ""
+            frames = s["frames"]
+            assert len(frames) == 2 and frames[0].dtype == np.uint8 and frames[0].shape == (240, 320, 3)
+            # The rig fuses what it hands back: the same frames through vkfuse.fuse agree.
+            np.testing.assert_allclose(s["fused"], vkfuse.fuse(frames, backend=backend), atol=2e-6, rtol=0)
+            expected = vkfuse.metrics(s["fused"], backend="cpu")
+            assert s["metrics"]["sharpness"] == pytest.approx(expected["sharpness"], rel=1e-5)
+            assert s["metrics"]["contrast"] == pytest.approx(expected["contrast"], rel=1e-5)
+    with pytest.raises(ValueError, match="must be >= 1"):
+        vkfuse.Rig(sensors=0)
+    with pytest.raises(ValueError, match="level 16"):
+        vkfuse.Rig(sequence=[(16, 0, 0)])
+
+
+@pytest.fixture(scope="module")
+def recorded(tmp_path_factory):
+    """A dataset `vkfuse sim` records: one object under the 8 settings of levels 0 and 15."""
+    cli = os.environ.get("VKFUSE_CLI")
+    if not cli:
+        pytest.skip("VKFUSE_CLI (the vkfuse program) not given")
+    out = tmp_path_factory.mktemp("dataset") / "coin"
+    subprocess.run([cli, "sim", "--out", str(out), "--objects", "coin-heads", "--grid", "0,15"], check=True,
+                   stdout=subprocess.DEVNULL)
+    return out
+
+
+def test_a_dataset_gives_its_frames_as_arrays(recorded):
+    ds = vkfuse.Dataset(str(recorded))
+    assert ds.source == "vkfuse sim" and len(ds.sensors) == 1 and ds.objects() == ["coin-heads"]
+    frames = ds.frames(ds.sensors[0], "coin-heads")
+    assert len(frames) == 8 and len(ds.frames(ds.sensors[0], "background")) == 8
+    lit = {f["illumination"]: f["pixels"] for f in frames}
+    assert set(lit) == {(r, g, b) for r in (0, 15) for g in (0, 15) for b in (0, 15)}
+    green = lit[(0, 15, 0)].reshape(-1, 3).mean(axis=0)
+    assert green[1] > green[0] + 10 and green[1] > green[2] + 10, f"green-lit frame means {green}"
+    assert lit[(0, 0, 0)].mean() < lit[(15, 15, 15)].mean() / 4
+    with pytest.raises(ValueError, match="no take of teapot"):
+        ds.frames(ds.sensors[0], "teapot")
+    with pytest.raises(vkfuse.Error):
+        vkfuse.Dataset(str(recorded / "missing"))
+
+
+def test_a_rig_replays_a_dataset_frame_for_frame(recorded):
+    ds = vkfuse.Dataset(str(recorded))
+    lit = {f["illumination"]: f["pixels"] for f in ds.frames(ds.sensors[0], "coin-heads")}
+    rig = vkfuse.Rig(dataset=str(recorded), object="coin-heads", sequence=[(15, 15, 15), (0, 15, 0)], backend="cpu")
+    (cycle,) = rig.cycles(1)
+    (s,) = cycle["sensors"]
+    assert s["status"] == "ok"
+    assert np.array_equal(s["frames"][0], lit[(15, 15, 15)]) and np.array_equal(s["frames"][1], lit[(0, 15, 0)])
+    np.testing.assert_allclose(s["fused"], vkfuse.fuse(s["frames"], backend="cpu"), atol=1e-7, rtol=0)

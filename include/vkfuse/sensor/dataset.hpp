@@ -64,6 +64,10 @@ struct Dataset {
     const DatasetSensorRecord& sensor(const std::string& serial) const;
     // Objects with frames (background takes excluded), in recording order.
     std::vector<std::string> objects() const;
+    // Background frames per setting a replay of sequence takes before the
+    // object's frames: the recorded run's, or for a dataset that recorded no
+    // run (`vkfuse sim`) as many as every sensor holds for every setting.
+    int background_frames(const IlluminationSequence& sequence) const;
 };
 
 // Reads and checks DIR/manifest.json (frames are loaded when played). Throws
