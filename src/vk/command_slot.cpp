@@ -4,6 +4,8 @@
 #include <mutex>
 #include <vector>
 
+#include "vkfuse/core/error.hpp"
+
 namespace vkfuse::vk {
 
 CommandSlot::CommandSlot(Context::Impl& ctx, std::uint32_t timestamp_queries, bool secondary) : ctx_(ctx) {
@@ -49,7 +51,10 @@ void CommandSlot::release() {
     auto& api = *ctx_.api;
     // An asynchronous submit (vkfuse::submit) not waited for, or one whose
     // wait failed (device lost, which ends this wait at once).
-    if (in_flight_) api.vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, std::numeric_limits<std::uint64_t>::max());
+    if (in_flight_) try {
+            wait_for_device();
+        } catch (const Error&) {  // a lost device: nothing is pending any more
+        }
     if (fence_) api.vkDestroyFence(ctx_.device, fence_, nullptr);
     if (timeline_) api.vkDestroySemaphore(ctx_.device, timeline_, nullptr);
     timeline_ = VK_NULL_HANDLE;
@@ -72,6 +77,10 @@ void CommandSlot::record_primary() {
 }
 
 void CommandSlot::submit() {
+    if (timeline_) {
+        submit_signalling({});
+        return;
+    }
     auto& api = *ctx_.api;
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
@@ -109,19 +118,30 @@ std::uint64_t CommandSlot::submit_signalling(std::span<const SemaphoreWait> wait
     si.pCommandBuffers = &cmd_;
     si.signalSemaphoreCount = 1;
     si.pSignalSemaphores = &timeline_;
-    check(api.vkResetFences(ctx_.device, 1, &fence_), "vkResetFences");
     {
         std::lock_guard lock(ctx_.queue_mutex);  // submissions of one context may come from several threads
-        check(api.vkQueueSubmit(ctx_.queue, 1, &si, fence_), "vkQueueSubmit");
+        check(api.vkQueueSubmit(ctx_.queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit");
     }
     timeline_value_ = signal;
     in_flight_ = true;
     return signal;
 }
 
+void CommandSlot::wait_for_device() const {
+    const auto forever = std::numeric_limits<std::uint64_t>::max();
+    if (timeline_) {
+        VkSemaphoreWaitInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO};
+        info.semaphoreCount = 1;
+        info.pSemaphores = &timeline_;
+        info.pValues = &timeline_value_;
+        check(ctx_.api->vkWaitSemaphores(ctx_.device, &info, forever), "vkWaitSemaphores");
+    } else {
+        check(ctx_.api->vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, forever), "vkWaitForFences");
+    }
+}
+
 void CommandSlot::wait() {
-    check(ctx_.api->vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, std::numeric_limits<std::uint64_t>::max()),
-          "vkWaitForFences");
+    wait_for_device();
     in_flight_ = false;
 }
 

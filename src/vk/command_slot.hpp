@@ -34,9 +34,11 @@ public:
 
     void submit();  // the recorded buffer, under the context's queue lock
     // The same after `waits`; its completion sets timeline() to the value
-    // returned (1, 2, ...). Only for a slot with a secondary buffer: the
-    // timeline is made for callers (vkfuse::submit), and the plain submits
-    // of every other slot stay as they were.
+    // returned (1, 2, ...). Only a slot with a secondary buffer has the
+    // timeline (it is made for callers: vkfuse::submit), and its every
+    // submit signals it and is waited for through it; other slots use their
+    // fence. No submit has both: lavapipe's fence wait was seen to hang now
+    // and then under load when a submit signalled a timeline too.
     std::uint64_t submit_signalling(std::span<const SemaphoreWait> waits);
     VkSemaphore timeline() const { return timeline_; }
     void wait();    // for the fence of the last submit
@@ -59,6 +61,7 @@ private:
     bool in_flight_ = false;  // submitted and not yet waited for
 
     void release();
+    void wait_for_device() const;  // the timeline's last value, or the fence
 };
 
 }  // namespace vkfuse::vk
