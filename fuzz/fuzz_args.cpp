@@ -49,10 +49,10 @@ void read_options(const cli::Command& command, const cli::Args& args) {
         FusionSpec spec;
         spec.method = parse_method(args.required("--method"));
         (void)cli::fusion_options(args, spec);
-        (void)cli::parse_backend(args.value("--backend").value_or("auto"));
+        (void)cli::parse_backend_option(args.value("--backend").value_or("auto"));
         io::check_image_extension(args.required("-o"));
     } else if (name == "metrics") {
-        (void)cli::parse_backend(args.value("--backend").value_or("auto"));
+        (void)cli::parse_backend_option(args.value("--backend").value_or("auto"));
     } else if (name == "run") {
         (void)cli::parse_run_options(args);
     }

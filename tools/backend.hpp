@@ -8,18 +8,15 @@
 
 namespace vkfuse::cli {
 
-enum class BackendChoice { Cpu, Vulkan, Auto };
-
 // The --backend option, the same for every command that computes.
 inline constexpr OptionSpec kBackendOption{
     "--backend", "", "B", "cpu, vulkan or auto (default auto: Vulkan when a usable device exists, else cpu)"};
 
 // "cpu", "vulkan" or "auto"; throws Error(InvalidArgument) naming --backend otherwise.
-BackendChoice parse_backend(std::string_view text);
+Backend parse_backend_option(std::string_view text);
 
-// The Vulkan context the choice asks for, or nothing for the CPU reference path.
-// Auto falls back to the CPU when no usable device exists and says so in one
-// line on stderr; Vulkan without a device throws Error(Device) naming --backend.
-std::optional<Context> open_backend(BackendChoice choice);
+// vkfuse::open_backend for a command: Auto's fallback to the CPU is said in
+// one line on stderr; Vulkan without a device throws naming --backend.
+std::optional<Context> open_backend(Backend choice);
 
 }  // namespace vkfuse::cli

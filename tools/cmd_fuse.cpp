@@ -75,7 +75,7 @@ int run(const Args& args) {
     spec.method = parse_method(args.required("--method"));
     spec = fusion_options(args, spec);
     std::string output = args.required("-o");
-    BackendChoice backend = parse_backend(args.value("--backend").value_or("auto"));
+    Backend backend = parse_backend_option(args.value("--backend").value_or("auto"));
     if (args.operands().empty()) args.usage_error("no input images");
     io::check_image_extension(output);  // fail before the work, not after it
 

@@ -85,7 +85,7 @@ std::string json_line(const std::string& path, const Metrics& m) {
 }
 
 int run(const Args& args) {
-    BackendChoice backend = parse_backend(args.value("--backend").value_or("auto"));
+    Backend backend = parse_backend_option(args.value("--backend").value_or("auto"));
     if (args.operands().empty()) args.usage_error("no input images");
     // Headers first: a bad input, a background of another shape or more
     // memory than the process can take is reported before any pixel is decoded.

@@ -33,20 +33,20 @@ std::uint64_t bytes(double b) { return b >= 1.8e19 ? UINT64_MAX : std::uint64_t(
 
 }  // namespace
 
-std::uint64_t fuse_memory_need(const std::vector<io::ImageHeader>& inputs, Method method, BackendChoice backend) {
+std::uint64_t fuse_memory_need(const std::vector<io::ImageHeader>& inputs, Method method, Backend backend) {
     if (inputs.empty()) return 0;
     const double f = double(inputs.front().image_bytes());
     const int frames = int(inputs.size());
     double decode = 0;
     for (const io::ImageHeader& h : inputs) decode = std::max(decode, double(h.decode_bytes));
     double need = 0;
-    if (backend != BackendChoice::Vulkan) need = std::max(need, cpu_fuse(f, frames, method));
-    if (backend != BackendChoice::Cpu) need = std::max(need, vulkan_fuse(f, frames, method));
+    if (backend != Backend::Vulkan) need = std::max(need, cpu_fuse(f, frames, method));
+    if (backend != Backend::Cpu) need = std::max(need, vulkan_fuse(f, frames, method));
     return bytes(need + decode);
 }
 
 std::uint64_t metrics_memory_need(const std::vector<io::ImageHeader>& inputs, const io::ImageHeader* background,
-                                  BackendChoice backend) {
+                                  Backend backend) {
     const double bg = background ? double(background->image_bytes()) : 0.0;
     double all = 0, largest = 0, largest_decode = background ? double(background->decode_bytes) : 0.0;
     std::map<std::tuple<int, int, int>, double> shapes;
@@ -59,8 +59,8 @@ std::uint64_t metrics_memory_need(const std::vector<io::ImageHeader>& inputs, co
     double plans = 0;
     for (const auto& [shape, f] : shapes) plans += 3.5 * f;
     double need = 0;
-    if (backend != BackendChoice::Vulkan) need = std::max(need, 3 * bg + all + 2 * largest + kCpuProcess);
-    if (backend != BackendChoice::Cpu) need = std::max(need, bg + all + plans + kVulkanProcess);
+    if (backend != Backend::Vulkan) need = std::max(need, 3 * bg + all + 2 * largest + kCpuProcess);
+    if (backend != Backend::Cpu) need = std::max(need, bg + all + plans + kVulkanProcess);
     return bytes(need + largest_decode);
 }
 

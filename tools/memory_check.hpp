@@ -27,7 +27,7 @@ namespace vkfuse::cli {
 // plus the largest decode buffer and the process itself (32 MiB, 192 MiB
 // with a Vulkan driver loaded).
 // inputs share one shape (checked before).
-std::uint64_t fuse_memory_need(const std::vector<io::ImageHeader>& inputs, Method method, BackendChoice backend);
+std::uint64_t fuse_memory_need(const std::vector<io::ImageHeader>& inputs, Method method, Backend backend);
 
 // Peak bytes of `vkfuse metrics`, which decodes every input before scoring:
 // all inputs and the background as float; on the cpu the background as double
@@ -35,7 +35,7 @@ std::uint64_t fuse_memory_need(const std::vector<io::ImageHeader>& inputs, Metho
 // distinct input shape for that shape's plan; the largest decode buffer and
 // the process as above.
 std::uint64_t metrics_memory_need(const std::vector<io::ImageHeader>& inputs, const io::ImageHeader* background,
-                                  BackendChoice backend);
+                                  Backend backend);
 
 // Throws Error(InvalidArgument) "a.png, b.png: fusing needs about 16.0 GiB of
 // memory, 11.2 GiB available (MemAvailable)" when need exceeds

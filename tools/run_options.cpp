@@ -112,7 +112,7 @@ RunOptions parse_run_options(const Args& args) {
     }
     o.sequence = sequence_option(args.value("--sequence").value_or(kDefaultSequence), LedLayout::digit());
     o.fusion = fusion_options(args, with_method(args, FusionSpec{}));
-    o.backend = parse_backend(args.value("--backend").value_or("auto"));
+    o.backend = parse_backend_option(args.value("--backend").value_or("auto"));
     if (auto v = args.value("--cycles")) o.cycles = parse_positive_int("--cycles", *v);
     if (auto v = args.value("--duration")) o.duration_s = parse_seconds("--duration", *v);
     o.virtual_clock = args.has("--virtual-clock");

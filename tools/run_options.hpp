@@ -39,7 +39,7 @@ struct RunOptions {
     double motion_period_s = 2.0;
     IlluminationSequence sequence;  // the paper's best pair unless --sequence
     FusionSpec fusion;              // wavelet, bior4.4, 3 levels unless told
-    BackendChoice backend = BackendChoice::Auto;
+    Backend backend = Backend::Auto;
     std::optional<int> cycles;
     std::optional<double> duration_s;  // of the sensors' clock
     bool virtual_clock = false;

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <list>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -30,38 +31,79 @@
 namespace vkfuse::python {
 namespace {
 
-// The process's Vulkan context, opened on first use: nullptr when there is no
-// usable device (the reason is kept for `backend="vulkan"`'s error).
-struct Device {
-    std::once_flag once;
-    std::unique_ptr<Context> context;
-    std::string why_none;
+// vkfuse.fuse() and vkfuse.metrics() plans, kept per configuration, so that
+// calling them in a loop costs a run, not a plan (buffers, descriptor sets,
+// the recorded commands). A plan is lent to one caller at a time: two threads
+// fusing the same shape get two plans.
+class PlanCache {
+public:
+    std::unique_ptr<Plan> take(Context& context, const PlanConfig& c) {
+        {
+            std::lock_guard lock(mutex_);
+            for (auto it = plans_.begin(); it != plans_.end(); ++it)
+                if (same(it->get()->config(), c)) {
+                    std::unique_ptr<Plan> plan = std::move(*it);
+                    plans_.erase(it);
+                    return plan;
+                }
+        }
+        return std::make_unique<Plan>(context, c);
+    }
+    void give_back(std::unique_ptr<Plan> plan) {
+        std::lock_guard lock(mutex_);
+        plans_.push_front(std::move(plan));
+        if (plans_.size() > kKept) plans_.pop_back();
+    }
+
+private:
+    static constexpr std::size_t kKept = 8;  // the most recently used configurations
+    std::mutex mutex_;
+    std::list<std::unique_ptr<Plan>> plans_;
+
+    static bool same(const PlanConfig& a, const PlanConfig& b) {
+        const FusionSpec &f = a.fusion, &g = b.fusion;
+        return a.fuse == b.fuse && f.method == g.method && f.levels == g.levels && f.wavelet == g.wavelet &&
+               f.mode == g.mode && f.base_rule == g.base_rule && f.detail_rule == g.detail_rule &&
+               a.height == b.height && a.width == b.width && a.channels == b.channels && a.frames == b.frames &&
+               a.sensors == b.sensors && a.input == b.input && a.want_fused == b.want_fused && a.metrics == b.metrics;
+    }
 };
 
-Device& device() {
-    static Device d;  // the one device a Python process shares, like a default CUDA device
-    std::call_once(d.once, [] {
-        try {
-            d.context = std::make_unique<Context>();
-        } catch (const Error& e) {
-            if (e.kind() != ErrorKind::Device) throw;
-            d.why_none = e.what();
-        }
-    });
-    return d;
+// The process's Vulkan context, opened on first use (the one device a Python
+// process shares, like a default CUDA device; empty when there is no usable
+// device), and the plans made on it, released before it.
+struct ProcessDevice {
+    std::optional<Context> context;
+    PlanCache plans;
+};
+
+ProcessDevice& process_device() {
+    static std::once_flag once;
+    static ProcessDevice device;
+    std::call_once(once, [] { device.context = vkfuse::open_backend(Backend::Auto, "backend"); });
+    return device;
+}
+
+// Runs `use` on a cached plan of c (the GIL released by the caller).
+template <class Use>
+void with_plan(const PlanConfig& c, Use&& use) {
+    ProcessDevice& device = process_device();
+    std::unique_ptr<Plan> plan = device.plans.take(*device.context, c);
+    use(*plan);  // a plan that threw (bad input) is dropped, not kept
+    device.plans.give_back(std::move(plan));
 }
 
 }  // namespace
 
 // The context `backend` asks for, or nullptr for the CPU reference path.
 Context* open_backend(const std::string& backend) {
-    if (backend == "cpu") return nullptr;
-    if (backend != "vulkan" && backend != "auto")
-        throw Error(ErrorKind::InvalidArgument, "backend " + backend + ": expected cpu, vulkan or auto");
-    Device& d = device();
-    if (!d.context && backend == "vulkan")
-        throw Error(ErrorKind::Device, "backend vulkan: no usable Vulkan device (" + d.why_none + ")");
-    return d.context.get();
+    const std::optional<Backend> choice = parse_backend(backend);
+    if (!choice) throw Error(ErrorKind::InvalidArgument, "backend " + backend + ": expected cpu, vulkan or auto");
+    if (*choice == Backend::Cpu) return nullptr;
+    std::optional<Context>& context = process_device().context;
+    // No device: asked again, so `vulkan` raises the library's own message.
+    if (!context && *choice == Backend::Vulkan) vkfuse::open_backend(Backend::Vulkan, "backend");
+    return context ? &*context : nullptr;
 }
 
 FusionSpec spec_of(const std::string& method, const std::string& wavelet, const std::optional<int>& levels,
@@ -124,9 +166,10 @@ py::array_t<float> fuse(const py::sequence& frames_in, const std::string& method
     Image fused;
     {
         py::gil_scoped_release unlocked;
-        Plan plan(*context, c);
-        plan.run(views);
-        fused = plan.fused(0);
+        with_plan(c, [&](Plan& plan) {
+            plan.run(views);
+            fused = plan.fused(0);
+        });
     }
     return to_array(fused, frames.gray);
 }
@@ -162,10 +205,11 @@ py::dict metrics(const py::handle& image_in, const py::object& background_in, co
         const std::vector<FrameView> views = image.views();
         const std::optional<FrameView> bg = background ? std::optional(background->views().front()) : std::nullopt;
         py::gil_scoped_release unlocked;
-        Plan plan(*context, c);
-        if (bg) plan.set_background(0, *bg);
-        plan.run(views);
-        m = plan.metrics(0);
+        with_plan(c, [&](Plan& plan) {
+            if (bg) plan.set_background(0, *bg);
+            plan.run(views);
+            m = plan.metrics(0);
+        });
     }
     return to_dict(m, which);
 }

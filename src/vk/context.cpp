@@ -333,6 +333,35 @@ std::string_view to_string(FilterArithmetic a) {
     return "?";
 }
 
+std::string_view to_string(Backend b) {
+    switch (b) {
+        case Backend::Cpu: return "cpu";
+        case Backend::Vulkan: return "vulkan";
+        case Backend::Auto: return "auto";
+    }
+    return "?";
+}
+
+std::optional<Backend> parse_backend(std::string_view text) {
+    for (Backend b : {Backend::Cpu, Backend::Vulkan, Backend::Auto})
+        if (text == to_string(b)) return b;
+    return std::nullopt;
+}
+
+std::optional<Context> open_backend(Backend choice, std::string_view subject, std::string* fallback_reason) {
+    if (choice == Backend::Cpu) return std::nullopt;
+    try {
+        return std::optional<Context>(std::in_place);
+    } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Device) throw;
+        if (choice == Backend::Vulkan)
+            throw Error(ErrorKind::Device,
+                        std::string(subject) + " vulkan: no usable Vulkan device (" + e.what() + ")");
+        if (fallback_reason) *fallback_reason = e.what();
+        return std::nullopt;
+    }
+}
+
 const DeviceInfo& Context::device() const { return impl_->info; }
 FilterArithmetic Context::filter_arithmetic() const { return impl_->filter_arithmetic; }
 std::uint64_t Context::validation_message_count() const { return impl_->validation_messages.load(); }

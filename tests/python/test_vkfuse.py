@@ -270,3 +270,28 @@ def test_a_rig_replays_a_dataset_frame_for_frame(recorded):
     assert s["status"] == "ok"
     assert np.array_equal(s["frames"][0], lit[(15, 15, 15)]) and np.array_equal(s["frames"][1], lit[(0, 15, 0)])
     np.testing.assert_allclose(s["fused"], vkfuse.fuse(s["frames"], backend="cpu"), atol=1e-7, rtol=0)
+
+
+@needs_vulkan
+def test_fuse_reuses_its_plans_without_mixing_them_up():
+    """fuse() keeps a plan per configuration: results must not depend on what ran before, or alongside."""
+    a, b = frames_for(2), [scene(30 + i)[:64, :80] for i in range(3)]
+    first_a = vkfuse.fuse(a, backend="vulkan")
+    first_b = vkfuse.fuse(b, method="laplacian", backend="vulkan")
+    for _ in range(3):
+        assert np.array_equal(vkfuse.fuse(a, backend="vulkan"), first_a)
+        assert np.array_equal(vkfuse.fuse(b, method="laplacian", backend="vulkan"), first_b)
+    pairs = [frames_for(2) if i % 2 else [scene(40 + i), scene(50 + i)] for i in range(8)]
+    expected = [vkfuse.fuse(p, backend="vulkan") for p in pairs]
+    results = [None] * len(pairs)
+
+    def work(i):
+        results[i] = vkfuse.fuse(pairs[i], backend="vulkan")
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(pairs))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for got, want in zip(results, expected):
+        assert np.array_equal(got, want)

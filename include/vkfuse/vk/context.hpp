@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -79,6 +80,20 @@ private:
     Impl& impl() { return *impl_; }
     std::unique_ptr<Impl> impl_;
 };
+
+// Which engine computes: the Vulkan path, the CPU reference, or Auto: the
+// Vulkan path where a usable device exists, else the CPU reference.
+enum class Backend { Cpu, Vulkan, Auto };
+std::string_view to_string(Backend);                           // "cpu", "vulkan", "auto"
+std::optional<Backend> parse_backend(std::string_view text);  // nullopt for any other text
+
+// The Context `choice` asks for, or nullopt for the CPU reference path. Auto
+// falls back to the CPU when no usable device exists, with the reason in
+// *fallback_reason (when given); Vulkan then throws Error(Device)
+// "<subject> vulkan: no usable Vulkan device (<reason>)", subject naming the
+// option ("--backend", "backend").
+std::optional<Context> open_backend(Backend choice, std::string_view subject,
+                                    std::string* fallback_reason = nullptr);
 
 // Lists the Vulkan devices without opening one. Throws Error(Device) if the
 // loader is missing; returns an empty list if it finds no device.
