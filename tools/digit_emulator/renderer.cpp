@@ -70,6 +70,10 @@ const Renderer::Lit& Renderer::lit(const Illumination& setting, bool vga) {
 }
 
 void Renderer::compose(double t0, const Committed& c, int from, int to, std::uint8_t* out) {
+    // Copied per call, not per frame: a switch requested while the frame is
+    // read out may light its later rows (the LED latency is configurable,
+    // and can be shorter than a frame), as on the real sensor. At most 16
+    // entries a chunk.
     std::vector<Switch> history;
     {
         std::lock_guard lock(mutex_);

@@ -160,10 +160,14 @@ std::optional<Committed> UvcCamera::streaming() const {
     return commit_;
 }
 
-bool UvcCamera::still_streaming(const Committed& c) const {
-    std::lock_guard lock(mutex_);
+bool UvcCamera::streams_locked(const Committed& c) const {
     return streaming_ && c.mode.format_index == commit_.mode.format_index &&
            c.mode.frame_index == commit_.mode.frame_index;
+}
+
+bool UvcCamera::still_streaming(const Committed& c) const {
+    std::lock_guard lock(mutex_);
+    return streams_locked(c);
 }
 
 // uvcvideo reads a bulk payload across as many transfers as it takes and
@@ -174,9 +178,7 @@ bool UvcCamera::send_frame(const Committed& c, std::size_t frame_size, const Fra
     std::uint8_t header[2];
     {
         std::lock_guard lock(mutex_);
-        if (!streaming_ || c.mode.format_index != commit_.mode.format_index ||
-            c.mode.frame_index != commit_.mode.frame_index)
-            return false;
+        if (!streams_locked(c)) return false;
         fid_ ^= 1;
         header[0] = 2;
         header[1] = std::uint8_t(0x80 | 0x02 | fid_);  // EOH, EOF, FID

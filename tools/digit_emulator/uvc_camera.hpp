@@ -62,7 +62,10 @@ private:
     ControlReply streaming_request(const SetupPacket& s, std::span<const std::uint8_t> out);
     ControlReply zoom_request(const SetupPacket& s, std::span<const std::uint8_t> out);
     Committed clamp(std::span<const std::uint8_t> probe) const;
+    // Whether the host still streams the mode c committed (streams_locked:
+    // with mutex_ held).
     bool still_streaming(const Committed& c) const;
+    bool streams_locked(const Committed& c) const;
 
     CameraSpec spec_;
     std::function<void(std::uint16_t)> on_zoom_;
