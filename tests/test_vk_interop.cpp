@@ -163,6 +163,40 @@ TEST_F(Interop, RunReadsTheFramesWhereTheyLieOnTheDevice) {
     expect_error([&] { plan.run(views); }, "plan run", ErrorKind::InvalidArgument, "device buffer");
 }
 
+// Float32 frames read from the device are taken at their own scale, so the
+// plan's backgrounds must reach the device at that scale too: the difference
+// with background equals an ordinary plan's, which uploads both itself.
+TEST_F(Interop, DeviceFloatFramesAreComparedWithTheirBackgrounds) {
+    PlanConfig c = config_of(Method::Wavelet, PixelType::F32);
+    c.metrics = {Metric::Sharpness, Metric::Contrast, Metric::BackgroundDiff};
+    caller::Device& dev = caller_device();
+    const std::vector<std::uint8_t> bytes = frame_bytes(c, 70);
+    const std::vector<std::uint8_t> backgrounds = frame_bytes(c, 80);
+    const std::vector<FrameView> background_views = views_of(c, backgrounds);
+    caller::HostBuffer frames = dev.buffer(bytes.size());
+    std::memcpy(frames.mapped, bytes.data(), bytes.size());
+    Plan embedded = make_plan(caller_context(), c, {frames.range(), {}});
+    Plan own(shared_context(), c);
+    for (int s = 0; s < kS; ++s) {
+        // Sensor s's background is the first frame of the seed-80 set for it.
+        embedded.set_background(s, background_views[std::size_t(s * kK)]);
+        own.set_background(s, background_views[std::size_t(s * kK)]);
+    }
+    for (int cycle = 0; cycle < 2; ++cycle) {  // the second cycle reuses what the first wrote
+        embedded.run({});
+        own.run(views_of(c, bytes));
+        for (int s = 0; s < kS; ++s) {
+            const Metrics got = embedded.metrics(s), want = own.metrics(s);
+            ASSERT_TRUE(got.background_diff.has_value()) << "sensor " << s;
+            ASSERT_TRUE(want.background_diff.has_value());
+            EXPECT_GT(*want.background_diff, 0.01) << "the backgrounds differ from the frames";
+            EXPECT_EQ(*got.background_diff, *want.background_diff) << "sensor " << s << " cycle " << cycle;
+            EXPECT_EQ(got.sharpness, want.sharpness);
+            EXPECT_EQ(got.contrast, want.contrast);
+        }
+    }
+}
+
 TEST_F(Interop, SubmitSignalsTheTimelineTheCallersWorkWaitsOn) {
     const PlanConfig c = config_of(Method::Laplacian, PixelType::F32);
     caller::Device& dev = caller_device();
@@ -210,6 +244,21 @@ TEST_F(Interop, BadBuffersAndCallsGetOneLine) {
     PlanConfig skipping = c;
     skipping.skip.policy = SkipPolicy::Idle;
     expect_error([&] { make_plan(caller_context(), skipping); }, "make_plan", ErrorKind::InvalidArgument, "skip off");
+    // Far-out float32 frames are scaled on the way to the device and their
+    // result scaled back on the way out, which an image written into the
+    // caller's buffer never takes: refused, not fused wrong.
+    PlanConfig floats = config_of(Method::Wavelet, PixelType::F32);
+    caller::HostBuffer fused = dev.buffer(fused_bytes(floats));
+    Plan embedded = make_plan(caller_context(), floats, {{}, fused.range()});
+    std::vector<std::uint8_t> huge = frame_bytes(floats, 5);
+    for (std::size_t i = 0; i < huge.size(); i += 4) {
+        float v;
+        std::memcpy(&v, &huge[i], 4);
+        v *= 1e20f;
+        std::memcpy(&huge[i], &v, 4);
+    }
+    expect_error([&] { upload(embedded, views_of(floats, huge)); }, "sensor 0", ErrorKind::Numeric,
+                 "caller's buffer");
     Plan own(caller_context(), c);
     VkCommandBuffer cmd = dev.begin();
     expect_error([&] { record(own, cmd); }, "record", ErrorKind::InvalidArgument, "not made by vkfuse::make_plan");

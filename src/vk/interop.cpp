@@ -71,6 +71,7 @@ void upload(Plan& plan, std::span<const FrameView> frames) {
 void record(Plan& plan, VkCommandBuffer cmd) {
     Plan::Impl& im = embedded(plan, "record");
     if (!cmd) throw Error(ErrorKind::InvalidArgument, "record: no command buffer");
+    if (im.device_frames.handle()) im.prepare_device_frames();
     const vk::Api& api = *im.ctx.api;
     // The caller's earlier commands wrote the frames (and may still read the
     // last fused image): the cycle waits for them.
@@ -92,6 +93,7 @@ std::uint64_t submit(Plan& plan, std::span<const SemaphoreWait> waits) {
     Plan::Impl& im = embedded(plan, "submit");
     im.finish_pending();
     im.check_ready();
+    if (im.device_frames.handle()) im.prepare_device_frames();
     const std::uint64_t value = im.slot->submit_signalling(waits);
     ++im.submits;
     im.pending = true;

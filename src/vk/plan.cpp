@@ -321,6 +321,14 @@ void upload_f32(Plan::Impl& im, std::span<const FrameView> frames) {
                                                 number(std::bit_cast<float>(background)) +
                                                 " lie too far apart to share one float32 scale on the device");
         }
+        // The host scales results back on the way out; an image written into
+        // a caller's buffer never passes it, so it would stay scaled.
+        if (*e != 0 && im.device_fused.handle())
+            throw Error(ErrorKind::Numeric, "sensor " + std::to_string(s) + ": frames of largest magnitude " +
+                                                number(std::bit_cast<float>(largest)) +
+                                                " need scaling on the device, which the fused image written to the "
+                                                "caller's buffer (PlanBuffers::fused) would keep; give frames within "
+                                                "[2^-40, 2^40)");
         if (*e != 0)
             for (std::size_t k = 0; k < K; ++k) vk::copy_scaled(dst + k * n, frames[s * K + k].data, n, *e);
         im.next_exponent[s] = *e;
@@ -374,6 +382,17 @@ void Plan::Impl::upload_frames(std::span<const FrameView> frames) {
     }
 }
 
+void Plan::Impl::prepare_device_frames() {
+    const std::size_t n = std::size_t(cfg.height) * cfg.width * cfg.channels;
+    for (std::size_t s = 0; s < std::size_t(cfg.sensors); ++s) {
+        exponent[s] = 0;
+        if (!background_host.empty() && background_exponent[s] != 0) {
+            vk::copy_scaled(static_cast<float*>(background.mapped()) + s * n, background_host.data() + s * n, n, 0);
+            background_exponent[s] = 0;
+        }
+    }
+}
+
 void Plan::Impl::complete() {
     has_run = true;
     std::fill(fused_fresh.begin(), fused_fresh.end(), false);
@@ -392,6 +411,7 @@ void Plan::run(std::span<const FrameView> frames) {
     im.finish_pending();  // the upload buffer may still be read by an asynchronous submit
     if (im.device_frames.handle() && frames.empty()) {
         im.check_ready();
+        im.prepare_device_frames();
     } else {
         im.upload_frames(frames);
     }

@@ -193,6 +193,10 @@ struct Plan::Impl {
     void check_ready() const;
     // Host frames into the upload buffer, checked (count, shapes, values).
     void upload_frames(std::span<const FrameView> frames);
+    // A cycle of frames read from device_frames is about to start: they are
+    // taken unscaled, so a float32 plan's backgrounds go to the device as
+    // given, and every result is read at the frames' own scale.
+    void prepare_device_frames();
     // A cycle ended: its results are what fused() and metrics() read.
     void complete();
     // An asynchronous submit still pending is waited for.

@@ -80,6 +80,9 @@ struct PlanBuffers {
     BufferRange frames;
     // sensors fused images, each height x width x channels float32 (HWC).
     // Needs config.want_fused. Plan::fused() then throws: the image is here.
+    // Host float32 frames must then lie within [2^-40, 2^40) in magnitude
+    // too: the host cannot scale back an image it never reads, so frames
+    // that would need scaling are refused (Error(Numeric) naming the sensor).
     BufferRange fused;
 };
 
@@ -102,7 +105,9 @@ void upload(Plan& plan, std::span<const FrameView> frames);
 // its writes are visible to every later command and to the host. The plan's
 // commands are prerecorded once (a secondary command buffer executed here):
 // appending costs the same whatever the method. After the caller's
-// submission has completed, call finished() before reading the results.
+// submission has completed, call finished() before reading the results; the
+// plan must not run again in any way (record, submit, run) while that
+// submission is pending, as the cycle uses the plan's buffers.
 void record(Plan& plan, VkCommandBuffer cmd);
 
 // The caller's submission holding the cycle record() appended has completed:
