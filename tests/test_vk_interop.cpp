@@ -11,7 +11,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <chrono>
 #include <memory>
+#include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "caller_vulkan.hpp"
@@ -226,6 +229,68 @@ TEST_F(Interop, SubmitSignalsTheTimelineTheCallersWorkWaitsOn) {
     EXPECT_EQ(plan.submits(), 3u);
 }
 
+// A timeline semaphore of the caller's that a submitted cycle waits for.
+// Reached (and the plan waited for) when the test leaves, even early: a cycle
+// still waiting would otherwise hold the plan's destructor forever.
+class Gate {
+public:
+    Gate(VkDevice device, Plan& plan) : device_(device), plan_(plan) {
+        VkSemaphoreTypeCreateInfo type{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+        type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+        VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        sci.pNext = &type;
+        if (vkCreateSemaphore(device_, &sci, nullptr, &semaphore_) != VK_SUCCESS) throw std::runtime_error("semaphore");
+    }
+    ~Gate() {
+        open();
+        wait(plan_);
+        vkDestroySemaphore(device_, semaphore_, nullptr);
+    }
+    VkSemaphore semaphore() const { return semaphore_; }
+    void open() {
+        std::uint64_t now = 0;
+        vkGetSemaphoreCounterValue(device_, semaphore_, &now);
+        if (now >= 1) return;
+        VkSemaphoreSignalInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SIGNAL_INFO};
+        signal.semaphore = semaphore_;
+        signal.value = 1;
+        vkSignalSemaphore(device_, &signal);
+    }
+
+private:
+    VkDevice device_;
+    Plan& plan_;
+    VkSemaphore semaphore_ = VK_NULL_HANDLE;
+};
+
+TEST_F(Interop, SubmitStartsOnlyOnceTheCallersSemaphoreIsReached) {
+    const PlanConfig c = config_of(Method::Brovey, PixelType::U8);
+    caller::Device& dev = caller_device();
+    const std::vector<std::uint8_t> first = frame_bytes(c, 90), second = frame_bytes(c, 95);
+    caller::HostBuffer frames = dev.buffer(first.size());
+    std::memcpy(frames.mapped, first.data(), first.size());
+    Plan plan = make_plan(caller_context(), c, {frames.range(), {}});
+    plan.run({});
+    std::memcpy(frames.mapped, second.data(), second.size());
+    Gate gate(dev.device(), plan);
+    const SemaphoreWait waits[] = {{gate.semaphore(), 1, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT}};
+    const std::uint64_t value = submit(plan, waits);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::uint64_t reached = 0;
+    ASSERT_EQ(vkGetSemaphoreCounterValue(dev.device(), timeline(plan), &reached), VK_SUCCESS);
+    EXPECT_LT(reached, value) << "the cycle ran before the caller's semaphore was reached";
+    // The first cycle's results are not handed out as the second's.
+    expect_error([&] { plan.metrics(0); }, "plan", ErrorKind::InvalidArgument, "metrics() while a submitted cycle is pending");
+    expect_error([&] { plan.fused(0); }, "plan", ErrorKind::InvalidArgument, "fused() while a submitted cycle is pending");
+    gate.open();
+    wait(plan);
+    ASSERT_EQ(vkGetSemaphoreCounterValue(dev.device(), timeline(plan), &reached), VK_SUCCESS);
+    EXPECT_EQ(reached, value);
+    std::vector<float> fused;
+    for (int s = 0; s < kS; ++s) fused.insert(fused.end(), plan.fused(s).data.begin(), plan.fused(s).data.end());
+    expect_same(ordinary(c, second), fused.data(), plan, "after the gate");
+}
+
 TEST_F(Interop, BadBuffersAndCallsGetOneLine) {
     caller::Device& dev = caller_device();
     const PlanConfig c = config_of(Method::Wavelet, PixelType::U8);
@@ -237,6 +302,18 @@ TEST_F(Interop, BadBuffersAndCallsGetOneLine) {
                  ErrorKind::InvalidArgument, "100 bytes, the plan needs");
     expect_error([&] { make_plan(caller_context(), c, {{}, small}); }, "make_plan fused buffer",
                  ErrorKind::InvalidArgument, "100 bytes");
+    // A range past what the buffer holds would let the kernels read and
+    // write beyond it; one merely larger than the plan needs is fine.
+    const BufferRange claims_too_much{big.buffer, 0, VkDeviceSize(1) << 40};
+    const std::size_t frames_needed = std::size_t(kH) * kW * kC * kK * kS;
+    caller::HostBuffer short_buffer = dev.buffer(frames_needed / 2);
+    const BufferRange past_the_end{short_buffer.buffer, 0, frames_needed};
+    expect_error([&] { make_plan(caller_context(), c, {past_the_end, {}}); }, "make_plan frames buffer",
+                 ErrorKind::InvalidArgument, "run past the buffer");
+    const BufferRange offset_past{big.buffer, VkDeviceSize(1) << 40, frames_needed};
+    expect_error([&] { make_plan(caller_context(), c, {offset_past, {}}); }, "make_plan frames buffer",
+                 ErrorKind::InvalidArgument, "run past the buffer");
+    EXPECT_NO_THROW(make_plan(caller_context(), c, {claims_too_much, {}})) << "only what the plan reads is bound";
     PlanConfig no_image = c;
     no_image.want_fused = false;
     expect_error([&] { make_plan(caller_context(), no_image, {{}, big.range()}); }, "make_plan",
@@ -269,6 +346,9 @@ TEST_F(Interop, BadBuffersAndCallsGetOneLine) {
     CallerDevice wrong_family = dev.describe();
     wrong_family.queue_family = 99;
     expect_error([&] { make_context(wrong_family); }, "caller device", ErrorKind::InvalidArgument, "queue family 99");
+    CallerDevice wrong_index = dev.describe();
+    wrong_index.queue_index = 7;
+    expect_error([&] { make_context(wrong_index); }, "caller device", ErrorKind::InvalidArgument, "queue index 7");
 }
 
 // Device A is the caller's (caller_vulkan.hpp), device B vkfuse's own

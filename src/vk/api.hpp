@@ -24,6 +24,7 @@ namespace vkfuse::vk {
     X(vkGetPhysicalDeviceFeatures2)               \
     X(vkGetPhysicalDeviceQueueFamilyProperties)   \
     X(vkGetPhysicalDeviceMemoryProperties)        \
+    X(vkGetPhysicalDeviceExternalBufferProperties) \
     X(vkCreateDevice)                             \
     X(vkEnumerateDeviceExtensionProperties)       \
     X(vkGetDeviceProcAddr)

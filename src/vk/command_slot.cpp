@@ -4,6 +4,7 @@
 #include <mutex>
 #include <vector>
 
+#include "vk/recorder.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
@@ -72,6 +73,11 @@ void CommandSlot::record_primary() {
     auto& api = *ctx_.api;
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     check(api.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+    // Embedded plans share the caller's queue and buffers: earlier commands
+    // may have written the frames or still read the last fused image. A
+    // signalled timeline makes the cycle's writes visible to its waiters.
+    memory_barrier(api, cmd_, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     api.vkCmdExecuteCommands(cmd_, 1, &secondary_);
     check(api.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 }

@@ -91,11 +91,20 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
         if (caller.queue_family >= n || !(families[caller.queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT))
             throw Error(ErrorKind::InvalidArgument, "caller device: queue family " + std::to_string(caller.queue_family) +
                                                         " has no compute queue");
+        if (caller.queue_index >= families[caller.queue_family].queueCount)
+            throw Error(ErrorKind::InvalidArgument, "caller device: queue index " + std::to_string(caller.queue_index) +
+                                                        " is beyond the " +
+                                                        std::to_string(families[caller.queue_family].queueCount) +
+                                                        " queues of family " + std::to_string(caller.queue_family));
         queue_family = caller.queue_family;
         timestamps = families[queue_family].timestampValidBits > 0;
         device = caller.device;
         api->load_device(device);
         api->vkGetDeviceQueue(device, queue_family, caller.queue_index, &queue);
+        if (!queue)
+            throw Error(ErrorKind::InvalidArgument, "caller device: the device has no queue " +
+                                                        std::to_string(caller.queue_index) + " in family " +
+                                                        std::to_string(queue_family));
         create_layout();
     } catch (...) {
         release();

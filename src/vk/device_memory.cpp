@@ -1,5 +1,10 @@
 // DeviceMemory (vkfuse/vk/interop.hpp): buffers whose memory is shared with
 // another device or process (an opaque fd) or with the host (a pointer).
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <string>
 
 #include "vk/buffer.hpp"
@@ -31,12 +36,31 @@ void need(bool has, const Context::Impl& ctx, const char* extension, const char*
 // A buffer of bytes shareable as handle_type, bound to memory of `allocation`
 // bytes (0: what the buffer needs) allocated with `import` (an import
 // structure, or an export one) chained in front of the device-address flag,
-// among allowed_types. Throws naming `what`.
+// among allowed_types. allocation 0 is an export (memory made here), any
+// other size an import. *allocated_memory is set once Vulkan holds the
+// memory (and with it an imported fd). Throws naming `what`.
 vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryHandleTypeFlagBits handle_type,
                        const void* import, VkDeviceSize allocation, std::uint32_t allowed_types,
-                       const std::string& what, VkDeviceSize* allocated, void* host_pointer = nullptr) {
+                       const std::string& what, VkDeviceSize* allocated, void* host_pointer = nullptr,
+                       bool* allocated_memory = nullptr) {
     if (bytes == 0) throw Error(ErrorKind::InvalidArgument, what + ": 0 bytes");
     const vk::Api& api = *ctx.api;
+    // Memory shared through this handle type must suit such a buffer; a
+    // driver that shares it only as a dedicated allocation is refused rather
+    // than given memory it cannot take.
+    VkPhysicalDeviceExternalBufferInfo query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_BUFFER_INFO};
+    query.usage = kUsage;
+    query.handleType = handle_type;
+    VkExternalBufferProperties external_props{VK_STRUCTURE_TYPE_EXTERNAL_BUFFER_PROPERTIES};
+    api.vkGetPhysicalDeviceExternalBufferProperties(ctx.physical, &query, &external_props);
+    const VkExternalMemoryFeatureFlags features = external_props.externalMemoryProperties.externalMemoryFeatures;
+    const VkExternalMemoryFeatureFlags wanted =
+        allocation == 0 ? VK_EXTERNAL_MEMORY_FEATURE_EXPORTABLE_BIT : VK_EXTERNAL_MEMORY_FEATURE_IMPORTABLE_BIT;
+    if (!(features & wanted) || (features & VK_EXTERNAL_MEMORY_FEATURE_DEDICATED_ONLY_BIT))
+        throw Error(ErrorKind::Device, what + ": " + ctx.info.name + " does not share storage buffers' memory this way" +
+                                           ((features & VK_EXTERNAL_MEMORY_FEATURE_DEDICATED_ONLY_BIT)
+                                                ? " (only as dedicated allocations)"
+                                                : ""));
     VkExternalMemoryBufferCreateInfo external{VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_BUFFER_CREATE_INFO};
     external.handleTypes = VkExternalMemoryHandleTypeFlags(handle_type);
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -63,12 +87,19 @@ vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryH
         VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         mai.pNext = &flags;
         mai.allocationSize = allocation;
-        // Device-local first; host-visible too where the device has both
+        // Device-local wherever the allowed types have it (a GPU's first type
+        // may be system memory); host-visible too where the device has both
         // (lavapipe, integrated GPUs): the host then sees the memory as well.
         const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-        mai.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits & allowed_types, 0,
+        const std::uint32_t types = req.memoryTypeBits & allowed_types;
+        bool device_local = false;
+        for (std::uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
+            if ((types >> i & 1u) && (ctx.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+                device_local = true;
+        mai.memoryTypeIndex = ctx.memory_type(types, device_local ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : 0,
                                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | host);
         vk::check(api.vkAllocateMemory(ctx.device, &mai, nullptr, &memory), (what + ": vkAllocateMemory").c_str());
+        if (allocated_memory) *allocated_memory = true;
         vk::check(api.vkBindBufferMemory(ctx.device, buffer, memory, 0), (what + ": vkBindBufferMemory").c_str());
         void* mapped = host_pointer;  // imported host memory is seen where it lies
         const bool visible = (ctx.memory.memoryTypes[mai.memoryTypeIndex].propertyFlags & host) == host;
@@ -107,15 +138,28 @@ DeviceMemory DeviceMemory::import_fd(Context& context, int fd, VkDeviceSize byte
     Context::Impl& ctx = vk::ContextAccess::of(context);
     need(ctx.info.external_memory_fd, ctx, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME, "importing an fd");
     if (fd < 0) throw Error(ErrorKind::InvalidArgument, "import_fd: fd " + std::to_string(fd) + " is not open");
+    // Vulkan takes the fd it imports, even where a later step (binding,
+    // mapping) then fails and frees the memory: it imports a duplicate, so
+    // the caller's fd stays theirs until everything has succeeded.
+    const int copy = ::fcntl(fd, F_DUPFD_CLOEXEC, 0);
+    if (copy < 0)
+        throw Error(ErrorKind::InvalidArgument, "import_fd: fd " + std::to_string(fd) + ": " + std::strerror(errno));
     VkImportMemoryFdInfoKHR imported{VK_STRUCTURE_TYPE_IMPORT_MEMORY_FD_INFO_KHR};
     imported.handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT;
-    imported.fd = fd;
+    imported.fd = copy;
     auto impl = std::make_unique<Impl>();
     impl->ctx = &ctx;
-    // An opaque fd's memory is imported whole: the exporter's allocation
-    // size, and the buffer spans it.
-    impl->buffer = make_buffer(ctx, bytes, VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT, &imported, bytes, ~0u,
-                               "import_fd", &impl->allocation);
+    bool vulkan_took_it = false;
+    try {
+        // An opaque fd's memory is imported whole: the exporter's allocation
+        // size, and the buffer spans it.
+        impl->buffer = make_buffer(ctx, bytes, VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT, &imported, bytes, ~0u,
+                                   "import_fd", &impl->allocation, nullptr, &vulkan_took_it);
+    } catch (...) {
+        if (!vulkan_took_it) ::close(copy);
+        throw;
+    }
+    ::close(fd);  // the import succeeded: as with a plain import, the fd is used up
     return DeviceMemory(std::move(impl));
 }
 

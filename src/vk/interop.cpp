@@ -28,7 +28,16 @@ vk::Buffer borrow(Context::Impl& ctx, const BufferRange& range, std::size_t need
     if (range.size < needed)
         throw Error(ErrorKind::InvalidArgument, what + ": " + std::to_string(range.size) + " bytes, the plan needs " +
                                                     std::to_string(needed));
-    return vk::Buffer::borrow(ctx, range.buffer, range.offset, range.size);
+    // Vulkan cannot say how large a buffer was created; its memory
+    // requirement is at least that, so a range past it is surely wrong.
+    VkMemoryRequirements req{};
+    ctx.api->vkGetBufferMemoryRequirements(ctx.device, range.buffer, &req);
+    if (range.offset > req.size || needed > req.size - range.offset)
+        throw Error(ErrorKind::InvalidArgument, what + ": " + std::to_string(needed) + " bytes from offset " +
+                                                    std::to_string(range.offset) + " run past the buffer's " +
+                                                    std::to_string(req.size));
+    // Only what the plan reads or writes is bound: a generous range costs nothing.
+    return vk::Buffer::borrow(ctx, range.buffer, range.offset, needed);
 }
 
 Plan::Impl& embedded(Plan& plan, const char* call) {
@@ -71,6 +80,8 @@ void upload(Plan& plan, std::span<const FrameView> frames) {
 void record(Plan& plan, VkCommandBuffer cmd) {
     Plan::Impl& im = embedded(plan, "record");
     if (!cmd) throw Error(ErrorKind::InvalidArgument, "record: no command buffer");
+    im.finish_pending();
+    im.check_ready();
     if (im.device_frames.handle()) im.prepare_device_frames();
     const vk::Api& api = *im.ctx.api;
     // The caller's earlier commands wrote the frames (and may still read the

@@ -230,6 +230,7 @@ void Plan::set_background(int sensor, const FrameView& bg) {
         throw Error(ErrorKind::InvalidArgument, "background: sensor " + std::to_string(sensor) + " out of range");
     const std::string name = "background of sensor " + std::to_string(sensor);
     check_view(bg, im.cfg, name, true);
+    im.finish_pending();  // a submitted cycle may still read the device copy
     const std::size_t pixels = std::size_t(bg.height) * bg.width, C = std::size_t(bg.channels);
     if (bg.type == PixelType::F32) {
         const std::uint32_t largest = vk::max_abs(bg.data, pixels * C);
@@ -398,6 +399,12 @@ void Plan::Impl::complete() {
     std::fill(fused_fresh.begin(), fused_fresh.end(), false);
 }
 
+void Plan::Impl::check_not_pending(const char* call) const {
+    if (pending)
+        throw Error(ErrorKind::InvalidArgument, std::string("plan: ") + call +
+                                                    " while a submitted cycle is pending; vkfuse::wait(plan) first");
+}
+
 void Plan::Impl::finish_pending() {
     if (!pending) return;
     pending = false;
@@ -440,6 +447,7 @@ const Image& Plan::fused(int sensor) const {
         throw Error(ErrorKind::InvalidArgument, "plan: the fused image is written to the caller's buffer "
                                                 "(PlanBuffers::fused), not read back");
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: fused() before run()");
+    im.check_not_pending("fused()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
     if (im.skipped(sensor)) return im.skip->skipped_image(sensor);
@@ -469,6 +477,7 @@ Metrics Plan::metrics(int sensor) const {
     auto& im = *impl_;
     if (im.cfg.metrics.empty()) throw Error(ErrorKind::InvalidArgument, "plan: created without metrics");
     if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: metrics() before run()");
+    im.check_not_pending("metrics()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
     if (im.skipped(sensor)) {

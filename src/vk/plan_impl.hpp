@@ -199,6 +199,9 @@ struct Plan::Impl {
     void prepare_device_frames();
     // A cycle ended: its results are what fused() and metrics() read.
     void complete();
+    // Results are read while an asynchronous submit is pending: refused, as
+    // they would be the previous cycle's, or half written.
+    void check_not_pending(const char* call) const;
     // An asynchronous submit still pending is waited for.
     void finish_pending();
 };

@@ -91,8 +91,10 @@ struct PlanBuffers {
 // well: with host frames as usual, or with an empty span when
 // buffers.frames is set. Everything else is as Plan (vk/plan.hpp), except
 // that skipping (config.skip) and profiling are not available here. The
-// buffers must outlive the plan. Throws Error naming the problem for a range
-// that is too small, misaligned, or not on the context's device.
+// buffers must outlive the plan, and be the context's device's (a buffer of
+// another device is undefined behaviour, as everywhere in Vulkan). Throws
+// Error naming the problem for a range that is too small, misaligned, or
+// runs past its buffer's memory requirement.
 Plan make_plan(Context& context, const PlanConfig& config, const PlanBuffers& buffers = {});
 
 // Host frames (as Plan::run takes them) into the plan's upload buffer, for a
@@ -126,7 +128,10 @@ struct SemaphoreWait {
 // starts once every wait is met and, when it ends, sets the plan's timeline
 // semaphore (timeline()) to the value returned (1, 2, ... per submit). A
 // previous submit still pending is waited out first (the plan has one set of
-// buffers). Frames: uploaded before (upload()) or in buffers.frames.
+// buffers). The cycle also waits for every command submitted to the same
+// queue before it (it may read frames they wrote, and writes the fused image
+// they may read); work on other queues that touches the plan's buffers must
+// be among the waits. Frames: uploaded before (upload()) or in buffers.frames.
 std::uint64_t submit(Plan& plan, std::span<const SemaphoreWait> waits = {});
 // The plan's timeline semaphore: the caller's own submissions may wait on it.
 VkSemaphore timeline(const Plan& plan);
