@@ -30,3 +30,6 @@
 // rig: many sensors fused per cycle, the background model
 #include "vkfuse/rig/background.hpp"
 #include "vkfuse/rig/rig.hpp"
+
+// study: which LED settings and fusion method serve a sensor best
+#include "vkfuse/study/study.hpp"

@@ -1,0 +1,246 @@
+// run_study (vkfuse/study/study.hpp): scores every combination with every
+// method, then the greedy search and the pairing, which may need more.
+#include "vkfuse/study/study.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "core/method_table.hpp"
+#include "study/evaluator.hpp"
+#include "study/study_data.hpp"
+#include "study/table.hpp"
+#include "vkfuse/core/error.hpp"
+
+namespace vkfuse {
+namespace study {
+namespace {
+
+// Combinations a study scores at most (per method): 22 times the paper's
+// grid (23 settings, up to 5), about 200 MiB of scores and days of work.
+constexpr std::size_t kMaxCombinations = 1'000'000;
+
+bool takes(const StudyMethod& m, std::size_t k) {
+    const int exact = core::method_info(m.spec.method).exact_frames;
+    return k >= 2 && (exact == 0 || std::size_t(exact) == k);
+}
+
+// n choose k, saturating at kMaxCombinations + 1.
+std::size_t choose(std::size_t n, std::size_t k) {
+    double c = 1;
+    for (std::size_t i = 0; i < k; ++i) c = c * double(n - i) / double(i + 1);
+    return c > double(kMaxCombinations) ? kMaxCombinations + 1 : std::size_t(std::llround(c));
+}
+
+// Every k-subset of 0..n-1, ascending, in lexicographic order.
+void append_subsets(std::size_t n, std::size_t k, std::vector<std::vector<std::size_t>>& out) {
+    if (k > n) return;
+    std::vector<std::size_t> c(k);
+    for (std::size_t i = 0; i < k; ++i) c[i] = i;
+    while (true) {
+        out.push_back(c);
+        std::size_t i = k;
+        while (i > 0 && c[i - 1] == n - k + (i - 1)) --i;
+        if (i == 0) return;
+        ++c[i - 1];
+        for (std::size_t j = i; j < k; ++j) c[j] = c[j - 1] + 1;
+    }
+}
+
+std::vector<Gains> gains_of(const std::vector<Metrics>& metrics, const std::vector<Metrics>& reference) {
+    std::vector<Gains> g;
+    for (std::size_t o = 0; o < metrics.size(); ++o)
+        g.push_back({metrics[o].sharpness / reference[o].sharpness, metrics[o].contrast / reference[o].contrast,
+                     *metrics[o].background_diff / *reference[o].background_diff});
+    return g;
+}
+
+class Study {
+public:
+    Study(const Dataset& dataset, const StudyOptions& options, Context* context)
+        : options_(checked(options)), data_(load_study_data(dataset, options.serial, options.objects)),
+          methods_(study_methods()), evaluator_(data_, context) {
+        for (const StudyMethod& m : methods_)
+            for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), data_.settings.size()); ++k)
+                if (takes(m, k)) validate(m.spec, data_.height, data_.width, 3, int(k));
+        const std::size_t n = data_.settings.size();
+        std::size_t count = 0;
+        for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), n); ++k) count += choose(n, k);
+        if (count > kMaxCombinations)
+            throw Error(ErrorKind::InvalidArgument,
+                        dataset.directory + ": " + std::to_string(n) + " settings in combinations of up to " +
+                            std::to_string(options.max_k) + " make more than " + std::to_string(kMaxCombinations) +
+                            " combinations; take fewer (max_k)");
+        for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), n); ++k)
+            append_subsets(n, k, table_.combinations);
+        for (std::size_t c = 0; c < table_.combinations.size(); ++c) index_[table_.combinations[c]] = c;
+        table_.methods = methods_.size();
+        table_.objects = data_.objects.size();
+        planned_ = n;  // the single frames, scored once
+        for (const auto& c : table_.combinations)
+            for (const StudyMethod& m : methods_) planned_ += takes(m, c.size()) ? 1 : 0;
+    }
+
+    StudyResult run(std::string backend) {
+        const auto start = std::chrono::steady_clock::now();
+        StudyResult r;
+        r.backend = std::move(backend);
+        r.settings = data_.settings;
+        r.objects = data_.objects;
+        r.static_setting = data_.static_setting;
+        score_singles(r);
+        score_table();
+        for (const StudyMethod& m : methods_) r.methods.push_back({m.name, 0, {}, 0});
+        ranking_ = analyse(table_, options_.top, r);
+        greedy(r);
+        pair_with_static(r);
+        r.combinations = table_.combinations.size() + data_.settings.size();
+        r.fusions = fusions_;
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return r;
+    }
+
+private:
+    // The options are checked before any frame is read.
+    static const StudyOptions& checked(const StudyOptions& o) {
+        if (o.max_k < 1) throw Error(ErrorKind::InvalidArgument, "study: max_k must be at least 1");
+        if (o.greedy_max < 1) throw Error(ErrorKind::InvalidArgument, "study: greedy_max must be at least 1");
+        if (o.top < 1) throw Error(ErrorKind::InvalidArgument, "study: top must be at least 1");
+        return o;
+    }
+
+    void progress() {
+        if (options_.progress) options_.progress(done_, planned_);
+    }
+    void step() {
+        ++done_;
+        progress();
+    }
+
+    void score_singles(StudyResult& r) {
+        std::vector<std::vector<Metrics>> metrics;
+        for (std::size_t s = 0; s < data_.settings.size(); ++s) {
+            const std::size_t one[] = {s};
+            metrics.push_back(evaluator_.score(methods_.front(), one));
+            ++done_;
+            progress();
+        }
+        reference_ = metrics[data_.static_setting];
+        for (std::size_t o = 0; o < data_.objects.size(); ++o) {
+            const Metrics& m = reference_[o];
+            if (!(m.sharpness > 0 && m.contrast > 0 && *m.background_diff > 0))
+                throw Error(ErrorKind::InvalidArgument,
+                            "object \"" + data_.objects[o] + "\": its frame under the static setting " +
+                                data_.settings[data_.static_setting].to_string() +
+                                " has a zero metric, which no gain can be measured against");
+        }
+        r.static_metrics = reference_;
+        for (const auto& m : metrics) table_.singles.push_back(gains_of(m, reference_));
+    }
+
+    void score_table() {
+        const std::size_t M = methods_.size(), O = data_.objects.size();
+        table_.gains.assign(table_.combinations.size() * M * O, Gains{});
+        table_.scored.assign(table_.combinations.size() * M, false);
+        for (std::size_t c = 0; c < table_.combinations.size(); ++c)
+            for (std::size_t m = 0; m < M; ++m) {
+                if (!takes(methods_[m], table_.combinations[c].size())) continue;
+                const std::vector<Gains> g = gains_of(evaluator_.score(methods_[m], table_.combinations[c]), reference_);
+                std::copy(g.begin(), g.end(), table_.gains.begin() + std::ptrdiff_t((c * M + m) * O));
+                table_.scored[c * M + m] = true;
+                fusions_ += O;
+                ++done_;
+                progress();
+            }
+    }
+
+    // The ranking method's mean gains for a set of settings (ascending):
+    // from the table, else scored now and kept. Counted as one step of
+    // progress either way, so that the plan made up front holds.
+    Gains mean_for(const std::vector<std::size_t>& settings) {
+        if (settings.size() == 1) return mean_gain(table_.singles[settings[0]].data(), table_.objects);
+        if (auto it = index_.find(settings); it != index_.end())
+            if (const Gains* g = table_.at(it->second, ranking_)) return mean_gain(g, table_.objects);
+        if (auto it = extra_.find(settings); it != extra_.end()) return it->second;
+        const std::vector<Gains> g = gains_of(evaluator_.score(methods_[ranking_], settings), reference_);
+        fusions_ += table_.objects;
+        return extra_[settings] = mean_gain(g.data(), table_.objects);
+    }
+
+    void greedy(StudyResult& r) {
+        const std::size_t n = data_.settings.size(), longest = std::min<std::size_t>(std::size_t(options_.greedy_max), n);
+        for (std::size_t length = 2; length <= longest; ++length) planned_ += 3 * (n - length + 1);
+        planned_ += n - 1;  // the pairing with the static setting, after
+        for (std::size_t i = 0; i < 3; ++i) {
+            const Metric metric = kAllMetrics[i];
+            std::vector<std::size_t> sequence;
+            for (std::size_t length = 1; length <= longest; ++length) {
+                std::size_t pick = n;
+                double value = -1;
+                for (std::size_t s = 0; s < n; ++s) {
+                    if (std::find(sequence.begin(), sequence.end(), s) != sequence.end()) continue;
+                    std::vector<std::size_t> set = sequence;
+                    set.push_back(s);
+                    std::sort(set.begin(), set.end());
+                    const double v = mean_for(set).of(metric);
+                    if (length > 1) step();
+                    if (v > value) {
+                        value = v;
+                        pick = s;
+                    }
+                }
+                sequence.push_back(pick);
+                r.greedy[i].push_back({length, sequence, value});
+            }
+        }
+    }
+
+    void pair_with_static(StudyResult& r) {
+        const std::size_t s0 = data_.static_setting;
+        for (std::size_t s = 0; s < data_.settings.size(); ++s) {
+            if (s == s0) continue;
+            const std::vector<std::size_t> pair = {std::min(s, s0), std::max(s, s0)};
+            r.pairing.push_back({{s}, mean_for(pair)});
+            step();
+        }
+    }
+
+    const StudyOptions& options_;
+    StudyData data_;
+    std::vector<StudyMethod> methods_;
+    Evaluator evaluator_;
+    Table table_;
+    std::map<std::vector<std::size_t>, std::size_t> index_;
+    std::map<std::vector<std::size_t>, Gains> extra_;  // ranking method, beyond the table
+    std::vector<Metrics> reference_;                    // per object: the static frame's
+    std::size_t ranking_ = 0;
+    std::size_t done_ = 0, planned_ = 0, fusions_ = 0;
+};
+
+}  // namespace
+}  // namespace study
+
+std::vector<StudyMethod> study_methods() {
+    std::vector<StudyMethod> out;
+    for (const core::MethodInfo& info : core::method_table()) {
+        FusionSpec spec;
+        spec.method = info.method;
+        if (!info.uses_wavelet) {
+            out.push_back({std::string(info.name), spec});
+            continue;
+        }
+        for (Wavelet w : {Wavelet::Haar, Wavelet::Db2, Wavelet::Bior22, Wavelet::Bior44}) {
+            spec.wavelet = w;
+            out.push_back({std::string(info.name) + "-" + std::string(to_string(w)), spec});
+        }
+    }
+    return out;
+}
+
+StudyResult run_study(const Dataset& dataset, const StudyOptions& options, Context* context) {
+    study::Study s(dataset, options, context);
+    return s.run(context ? "vulkan (" + context->device().name + ")" : std::string("cpu"));
+}
+
+}  // namespace vkfuse

@@ -1,0 +1,98 @@
+#include "study/study_data.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "vkfuse/core/error.hpp"
+
+namespace vkfuse::study {
+namespace {
+
+[[noreturn]] void fail(const Dataset& dataset, const std::string& problem) {
+    throw Error(ErrorKind::InvalidArgument, dataset.directory + ": " + problem);
+}
+
+std::size_t index_of(const std::vector<Illumination>& settings, const Illumination& s) {
+    return std::size_t(std::find(settings.begin(), settings.end(), s) - settings.begin());
+}
+
+}  // namespace
+
+StudyData load_study_data(const Dataset& dataset, const std::string& serial, const std::vector<std::string>& objects) {
+    if (dataset.sensors.empty()) fail(dataset, "no sensor recorded");
+    const DatasetSensorRecord& sensor = serial.empty() ? dataset.sensors.front() : dataset.sensor(serial);
+    StudyData d;
+    d.height = sensor.info.height;
+    d.width = sensor.info.width;
+
+    // Settings in the order their backgrounds were recorded, each with the
+    // frames that will be averaged into its background.
+    std::vector<std::vector<const DatasetFrame*>> background_frames;
+    for (const DatasetTake& take : sensor.takes) {
+        if (!take.background) continue;
+        for (const DatasetFrame& f : take.frames) {
+            const std::size_t i = index_of(d.settings, f.illumination);
+            if (i == d.settings.size()) {
+                if (d.settings.size() == kMaxSettings)
+                    fail(dataset, "sensor " + sensor.info.serial + " has more than " + std::to_string(kMaxSettings) +
+                                      " settings, more than a study takes");
+                d.settings.push_back(f.illumination);
+                background_frames.emplace_back();
+            }
+            background_frames[i].push_back(&f);
+        }
+    }
+    if (d.settings.empty()) fail(dataset, "sensor " + sensor.info.serial + " has no background frames");
+    const int full = sensor.info.leds.max_level;
+    const auto is_static = [&](const Illumination& s) {
+        return std::all_of(s.levels().begin(), s.levels().end(), [&](int level) { return level == full; });
+    };
+    d.static_setting = std::size_t(std::find_if(d.settings.begin(), d.settings.end(), is_static) - d.settings.begin());
+    if (d.static_setting == d.settings.size())
+        fail(dataset, "no background under the static setting (every LED at " + std::to_string(full) +
+                          "), which every gain is measured against");
+
+    d.objects = objects.empty() ? dataset.objects() : objects;
+    if (d.objects.empty()) fail(dataset, "no object frames, only backgrounds");
+    const std::vector<std::string> known = dataset.objects();
+    for (const std::string& object : d.objects) {
+        if (std::find(known.begin(), known.end(), object) == known.end())
+            fail(dataset, "no object \"" + object + "\" for sensor " + sensor.info.serial);
+        std::vector<const DatasetFrame*> first(d.settings.size(), nullptr);
+        for (const DatasetTake& take : sensor.takes) {
+            if (take.background || take.object != object) continue;
+            for (const DatasetFrame& f : take.frames) {
+                const std::size_t i = index_of(d.settings, f.illumination);
+                if (i == d.settings.size())
+                    fail(dataset, "object \"" + object + "\" has frames under " + f.illumination.to_string() +
+                                      ", which has no background");
+                if (!first[i]) first[i] = &f;
+            }
+        }
+        std::vector<Frame> frames;
+        for (std::size_t i = 0; i < d.settings.size(); ++i) {
+            if (!first[i])
+                fail(dataset, "object \"" + object + "\" has no frame under " + d.settings[i].to_string() +
+                                  " (a study needs every object under every setting)");
+            frames.push_back(load_frame(dataset, sensor, *first[i]));
+        }
+        d.frames.push_back(std::move(frames));
+    }
+
+    // One frame in memory at a time, however many the dataset lists: the
+    // byte sums are exact integers, so the mean is the reference's.
+    for (const auto& group : background_frames) {
+        std::vector<std::uint64_t> sum(std::size_t(d.height) * d.width * 3, 0);
+        for (const DatasetFrame* f : group) {
+            const Frame frame = load_frame(dataset, sensor, *f);
+            for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += frame.pixels[i];
+        }
+        Image mean(d.height, d.width, 3);
+        const double scale = 1.0 / (255.0 * double(group.size()));
+        for (std::size_t i = 0; i < sum.size(); ++i) mean.data[i] = float(double(sum[i]) * scale);
+        d.backgrounds.push_back(std::move(mean));
+    }
+    return d;
+}
+
+}  // namespace vkfuse::study

@@ -1,0 +1,35 @@
+// study/study_data.hpp - what a study reads from a dataset: per object one
+// frame under each LED setting, and per setting the mean background.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/sensor/dataset.hpp"
+
+namespace vkfuse::study {
+
+// Settings a study takes at most: combinations grow as n^5, and the dataset
+// must not choose how much time and memory the study takes.
+inline constexpr std::size_t kMaxSettings = 64;
+
+struct StudyData {
+    int height = 0;
+    int width = 0;
+    // Every setting with a background, in recording order; each object has a
+    // frame under each.
+    std::vector<Illumination> settings;
+    std::size_t static_setting = 0;  // every LED at its full level
+    std::vector<std::string> objects;
+    std::vector<std::vector<Frame>> frames;  // [object][setting]: the first frame recorded
+    std::vector<Image> backgrounds;          // [setting]: the mean of its background frames
+};
+
+// Reads the frames of sensor `serial` (empty: the dataset's first) and of
+// `objects` (empty: all). Throws Error(InvalidArgument) naming the dataset
+// for a missing sensor, object, background or frame, a dataset without the
+// static setting, or one with more than kMaxSettings settings; frames that
+// are missing on disk or of another shape throw as load_frame does.
+StudyData load_study_data(const Dataset& dataset, const std::string& serial, const std::vector<std::string>& objects);
+
+}  // namespace vkfuse::study
