@@ -36,7 +36,7 @@ std::vector<std::string> split_words(const std::uint8_t* data, std::size_t size)
 
 const cli::Command* find_command(const std::string& name) {
     for (const cli::Command* c : {&cli::fuse_command, &cli::metrics_command, &cli::info_command, &cli::run_command,
-                                  &cli::sim_command, &cli::study_command})
+                                  &cli::sim_command, &cli::study_command, &cli::tune_command})
         if (c->spec.name == name) return c;
     return nullptr;
 }

@@ -6,17 +6,11 @@
 #include <filesystem>
 
 #include "cli_runner.hpp"
-#include "io/json_value.hpp"
+#include "json_member.hpp"
 #include "study_dataset.hpp"
 
 namespace vkfuse::test {
 namespace {
-
-const json::Value& member(const json::Value& v, const char* key) {
-    const json::Value* m = v.find(key);
-    if (!m) throw std::runtime_error(std::string("no member ") + key);
-    return *m;
-}
 
 TEST(CliStudy, WritesResultsAReportAndPlots) {
     TempDir tmp;

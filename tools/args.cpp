@@ -136,4 +136,15 @@ double parse_positive_number(std::string_view option, const std::string& text, s
     return value;
 }
 
+std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t end = text.find(',', start);
+        parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+        if (end == std::string::npos) return parts;
+        start = end + 1;
+    }
+}
+
 }  // namespace vkfuse::cli

@@ -64,6 +64,10 @@ bool wants_help(std::span<const std::string> argv);
 // The --help text of a subcommand: usage, details, options, example.
 std::string help_text(const CommandSpec& spec);
 
+// "a,b,c" -> {"a", "b", "c"}: the value of a list option (empty items kept,
+// for the caller to refuse by name).
+std::vector<std::string> split_list(const std::string& text);
+
 // A positive decimal int; throws Error(InvalidArgument) "--levels abc: expected a positive integer".
 int parse_positive_int(std::string_view option, const std::string& text);
 // A decimal int >= 0; throws Error(InvalidArgument) "--frames x: expected a non-negative integer".

@@ -31,6 +31,7 @@ constexpr OptionSpec kOptions[] = {
     {"--motion", "", "M", "how it moves: still, tap (pressed half of each period) or slide (default still)"},
     {"--motion-period", "", "SECONDS", "one tap, or one slide across the gel and back (default 2)"},
     {"--sequence", "", "SEQ", "LED settings per cycle, r,g,b each 0..15, joined by + (default 15,15,15+0,15,0)"},
+    {"--config", "", "FILE", "the sequence and fusion `vkfuse tune` chose; options given here win over it"},
     {"--method", "", "M", "{methods} (default wavelet)"},
     kLevelsOption,
     kWaveletOption,

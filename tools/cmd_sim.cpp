@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "sim_record.hpp"
 #include "staged_directory.hpp"
 #include "stop_signal.hpp"
 #include "vkfuse/core/error.hpp"
@@ -36,61 +37,11 @@ constexpr CommandSpec kSpec{
     "vkfuse sim --out coin-set --objects coin-heads,coin-tails --grid 0,15 --frames 4",
 };
 
-std::vector<std::string> split(const std::string& text, char separator) {
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t end = text.find(separator, start);
-        parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-        if (end == std::string::npos) return parts;
-        start = end + 1;
-    }
-}
-
-std::vector<std::string> objects_option(const Args& args) {
-    const std::vector<std::string> known = SimDigit::objects();
-    std::vector<std::string> out;
-    if (!args.has("--objects")) {
-        // "coin" is another name for "coin-heads"; "nothing" is the background.
-        std::copy_if(known.begin(), known.end(), std::back_inserter(out),
-                     [](const std::string& o) { return o != "nothing" && o != "coin"; });
-        return out;
-    }
-    for (const std::string& o : split(*args.value("--objects"), ',')) {
-        if (o != "coin" && std::find(known.begin(), known.end(), o) == known.end()) {
-            std::string list;
-            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-            throw Error(ErrorKind::InvalidArgument, "--objects: unknown object '" + o + "' (expected " + list + ")");
-        }
-        out.push_back(o);
-    }
-    return out;
-}
-
-// Every r,g,b combination of the levels, r slowest.
-std::vector<Illumination> grid_option(const Args& args) {
-    const std::string text = args.value("--grid").value_or("0,1,5,15");
-    std::vector<int> levels;
-    const int max_level = LedLayout::digit().max_level;
-    for (const std::string& v : split(text, ',')) {
-        const int level = parse_count("--grid", v);
-        if (level > max_level)
-            throw Error(ErrorKind::InvalidArgument,
-                        "--grid " + text + ": level " + v + " exceeds " + std::to_string(max_level));
-        if (std::find(levels.begin(), levels.end(), level) == levels.end()) levels.push_back(level);
-    }
-    std::vector<Illumination> grid;
-    for (int r : levels)
-        for (int g : levels)
-            for (int b : levels) grid.push_back(Illumination({r, g, b}));
-    return grid;
-}
-
 int run(const Args& args) {
     if (!args.operands().empty()) args.usage_error("unexpected operand " + args.operands().front());
     RecordOptions rec;
-    rec.objects = objects_option(args);
-    rec.grid = grid_option(args);
+    rec.objects = args.has("--objects") ? parse_sim_objects("--objects", *args.value("--objects")) : every_sim_object();
+    rec.grid = parse_grid("--grid", args.value("--grid").value_or("0,1,5,15"));
     rec.frames = args.has("--frames") ? parse_positive_int("--frames", *args.value("--frames")) : 1;
     rec.background_frames = args.has("--background-frames")
                                 ? parse_positive_int("--background-frames", *args.value("--background-frames"))
@@ -99,23 +50,17 @@ int run(const Args& args) {
     sim_options.vga = args.has("--vga");
     sim_options.camera_auto = args.has("--camera-auto");
     if (auto v = args.value("--seed")) sim_options.seed = std::uint64_t(parse_count("--seed", *v));
-    sim_options.object = "nothing";
-    sim_options.clock = make_virtual_clock();
     const std::string out = args.value("--out").value_or("sim-dataset");
     // Written beside its name and renamed into place when complete: an
     // interrupted or failed recording leaves nothing behind.
     StopSignal stop;
     StagedDirectory staged(out, StagedDirectory::Policy{"--out", false, nullptr, ""});
-    SimDigit sim(sim_options);
-    DatasetWriter writer(staged.path(), "vkfuse sim");
     Progress progress("vkfuse sim");
-    rec.place_object = [&](const std::string& object) { sim.set_object(object); };
     rec.progress = [&](std::size_t done, std::size_t total) {
         if (stop.requested()) throw Error(ErrorKind::InvalidArgument, "--out " + out + ": interrupted; nothing written");
         progress.fraction(done, total, "frames");
     };
-    record_dataset(sim, sim_options.clock, writer, rec);
-    writer.finish();
+    record_simulated(staged.path(), sim_options, rec);
     progress.finish();
     staged.publish();
     std::printf("%s: %zu objects x %zu settings, %d + %d frames each (background + object)\n", out.c_str(),

@@ -42,17 +42,6 @@ constexpr CommandSpec kSpec{
     "vkfuse study coin-set --quick --out coin-study",
 };
 
-std::vector<std::string> split_list(const std::string& text) {
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t end = text.find(',', start);
-        parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-        if (end == std::string::npos) return parts;
-        start = end + 1;
-    }
-}
-
 std::string eta(double seconds) {
     const long s = long(seconds + 0.5);
     char text[32];

@@ -17,6 +17,7 @@ extern const Command info_command;
 extern const Command run_command;
 extern const Command sim_command;
 extern const Command study_command;
+extern const Command tune_command;
 extern const Command devices_command;
 
 }  // namespace vkfuse::cli

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "fusion_options.hpp"
+#include "run_config.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
@@ -42,7 +43,7 @@ void check_replay_conflicts(const Args& args) {
     for (const char* option : kSimulatorOptions)
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
-    for (const char* option : {"--background-frames", "--sensor", "--encoding"})
+    for (const char* option : {"--background-frames", "--sensor", "--encoding", "--config"})
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
 }
@@ -110,8 +111,14 @@ RunOptions parse_run_options(const Args& args) {
             fail("--motion-period " + *v + ": shorter than the simulator's shortest motion period (" +
                  format_seconds(SimDigitOptions::kMinMotionPeriodS) + ")");
     }
-    o.sequence = sequence_option(args.value("--sequence").value_or(kDefaultSequence), LedLayout::digit());
-    o.fusion = fusion_options(args, with_method(args, FusionSpec{}));
+    // A tuned configuration stands in for the defaults; what the command
+    // line says wins over both.
+    std::optional<RunConfig> config;
+    if (auto v = args.value("--config")) config = read_run_config(*v);
+    o.sequence = args.has("--sequence") || !config
+                     ? sequence_option(args.value("--sequence").value_or(kDefaultSequence), LedLayout::digit())
+                     : config->sequence;
+    o.fusion = fusion_options(args, with_method(args, config ? config->fusion : FusionSpec{}));
     o.backend = parse_backend_option(args.value("--backend").value_or("auto"));
     if (auto v = args.value("--cycles")) o.cycles = parse_positive_int("--cycles", *v);
     if (auto v = args.value("--duration")) o.duration_s = parse_seconds("--duration", *v);

@@ -139,14 +139,19 @@ std::size_t analyse(const Table& t, int top, StudyResult& r) {
     const std::vector<StudyMethod> methods = study_methods();
     summarise_methods(t, r);
     // Only methods that fused something compete (channel-sum needs
-    // combinations of exactly three).
+    // combinations of exactly three). The share improving every metric
+    // decides; where it ties (none improving anything, often) the mean of
+    // the three mean gains does.
+    const auto better = [&](std::size_t a, std::size_t b) {
+        const auto &x = r.methods[a], &y = r.methods[b];
+        if (x.improves_all_fraction != y.improves_all_fraction) return x.improves_all_fraction > y.improves_all_fraction;
+        return mean_of_three(x.mean_gain) > mean_of_three(y.mean_gain);
+    };
     std::size_t best = t.methods, ranking = t.methods;
     for (std::size_t m = 0; m < t.methods; ++m) {
         if (r.methods[m].fusions == 0) continue;
-        if (best == t.methods || r.methods[m].improves_all_fraction > r.methods[best].improves_all_fraction) best = m;
-        if (takes_any_count(methods[m]) &&
-            (ranking == t.methods || r.methods[m].improves_all_fraction > r.methods[ranking].improves_all_fraction))
-            ranking = m;
+        if (best == t.methods || better(m, best)) best = m;
+        if (takes_any_count(methods[m]) && (ranking == t.methods || better(m, ranking))) ranking = m;
     }
     if (best == t.methods) {  // combinations of one setting only: nothing was fused
         best = ranking = std::size_t(std::find_if(methods.begin(), methods.end(), takes_any_count) - methods.begin());

@@ -78,7 +78,9 @@ struct StudyResult {
         std::size_t fusions = 0;
     };
     std::vector<MethodSummary> methods;  // study_methods() order
-    std::string best_method;             // highest improves_all_fraction
+    // Highest improves_all_fraction; among equal shares, the highest mean of
+    // the three mean gains.
+    std::string best_method;
     // Per metric (kAllMetrics order), the `top` pairs of best_method by mean gain.
     std::array<std::vector<Scored>, 3> best_pairs;
     // Pairs among the top of all three metrics for one object, and for every object.

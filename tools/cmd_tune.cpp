@@ -1,0 +1,185 @@
+// vkfuse tune: the study on the user's own sensor, captured now (or a
+// dataset), and its winner written as a configuration `vkfuse run --config`
+// takes.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "backend.hpp"
+#include "commands.hpp"
+#include "io/atomic_write.hpp"
+#include "progress.hpp"
+#include "run_config.hpp"
+#include "run_sensors.hpp"
+#include "sim_record.hpp"
+#include "stop_signal.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/study/study.hpp"
+
+namespace vkfuse::cli {
+namespace {
+
+constexpr OptionSpec kOptions[] = {
+    {"--out", "", "FILE", "the configuration written (default vkfuse-config.json)"},
+    {"--dataset", "", "DIR", "study this dataset instead of capturing (vkfuse sim, or one recorded before)"},
+    {"--sensor", "", "SERIAL", "the DIGIT to capture from (default the one plugged in, else the simulated DIGIT)"},
+    {"--simulate", "", "", "capture from the simulated DIGIT even when a DIGIT is plugged in"},
+    {"--objects", "", "A,B", "what is pressed, one after another (simulated default coin,lego; a DIGIT needs them named)"},
+    {"--grid", "", "V,V", "LED levels 0..15; every r,g,b combination is captured (default 0,15: 8 settings)"},
+    {"--background-frames", "", "N", "no-contact frames averaged per setting (default 4)"},
+    {"--max-k", "", "N", "combinations of 1..N settings (default 3)"},
+    kBackendOption,
+};
+
+constexpr CommandSpec kSpec{
+    "tune",
+    "find the LED sequence and fusion method that serve your sensor best, as a config for vkfuse run",
+    "vkfuse tune [--out FILE] [--dataset DIR | --sensor SERIAL | --simulate] [--objects A,B] [--grid V,V]",
+    "Captures, on the DIGIT plugged in (asking you on the terminal to press each\n"
+    "object in turn) or on the simulated DIGIT, a frame of each object under every\n"
+    "setting of --grid and the backgrounds; runs `vkfuse study` on them; and writes\n"
+    "the combination and method that improve sharpness, contrast and difference\n"
+    "with background the most (on every object where one does) as FILE, which\n"
+    "`vkfuse run --config FILE` uses.",
+    kOptions,
+    "vkfuse tune --out digit.json && vkfuse run --config digit.json",
+};
+
+// A scratch directory for the captured dataset, removed whatever happens.
+class ScratchDirectory {
+public:
+    ScratchDirectory() {
+        std::string pattern = (std::filesystem::temp_directory_path() / "vkfuse-tune-XXXXXX").string();
+        if (!::mkdtemp(pattern.data()))
+            throw Error(ErrorKind::Io, "tune: cannot create a scratch directory in " +
+                                           std::filesystem::temp_directory_path().string());
+        path_ = pattern;
+    }
+    ~ScratchDirectory() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path_, ignored);
+    }
+    ScratchDirectory(const ScratchDirectory&) = delete;
+    ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+    std::string dataset() const { return path_ + "/dataset"; }
+
+private:
+    std::string path_;
+};
+
+// Waits for the person at the sensor: one line on stdin per object.
+void ask_operator(const std::string& serial, const std::string& object) {
+    if (object == "nothing")
+        std::fprintf(stderr, "tune: take everything off %s's gel, keep it still, then press Enter\n", serial.c_str());
+    else
+        std::fprintf(stderr, "tune: press %s onto %s's gel and hold it still, then press Enter\n", object.c_str(),
+                     serial.c_str());
+    std::string line;
+    if (!std::getline(std::cin, line))
+        throw Error(ErrorKind::InvalidArgument, "tune: standard input closed while waiting for " + object);
+}
+
+void capture(const Args& args, const std::string& directory, RecordOptions rec, StopSignal& stop) {
+    Progress progress("vkfuse tune");
+    rec.progress = [&](std::size_t done, std::size_t total) {
+        if (stop.requested()) throw Error(ErrorKind::InvalidArgument, "tune: interrupted; nothing written");
+        progress.fraction(done, total, "frames");
+    };
+    std::vector<std::string> digits;
+    if (auto v = args.value("--sensor")) digits = {*v};
+    if (digits.empty() && !args.has("--simulate")) {
+        digits = plugged_digits();
+        if (digits.size() > 1) digits.resize(1);
+    }
+    if (digits.empty()) {
+        if (!args.has("--objects")) rec.objects = {"coin", "lego"};
+        else rec.objects = parse_sim_objects("--objects", *args.value("--objects"));
+        std::fprintf(stderr, "tune: no DIGIT plugged in; capturing from the simulated DIGIT\n");
+        record_simulated(directory, SimDigitOptions{}, rec);
+    } else {
+        if (!args.has("--objects")) args.usage_error("--objects: name the objects you will press onto " + digits[0]);
+        rec.objects = split_list(*args.value("--objects"));
+        RunOptions options;
+        RunSensors sensors = digit_sensors(options, digits);
+        DatasetWriter writer(directory, "vkfuse tune");
+        rec.place_object = [&](const std::string& object) { ask_operator(digits[0], object); };
+        record_dataset(*sensors.rig.front().sensor, sensors.rig.front().clock, writer, rec);
+        writer.finish();
+    }
+    progress.finish();
+}
+
+RunConfig winner(const StudyResult& r) {
+    if (r.best.settings.empty())
+        throw Error(ErrorKind::InvalidArgument, "tune: nothing was fused (a grid of one setting?)");
+    RunConfig c;
+    for (std::size_t s : r.best.settings) c.sequence.push_back(r.settings[s]);
+    for (const StudyMethod& m : study_methods())
+        if (m.name == r.best_best_method) c.fusion = m.spec;
+    return c;
+}
+
+json::Value tuned_json(const StudyResult& r, const std::string& source) {
+    json::Value::Array objects;
+    for (const std::string& o : r.objects) objects.emplace_back(o);
+    return json::Value::Object{{"source", source},
+                               {"objects", std::move(objects)},
+                               {"method", r.best_best_method},
+                               {"sharpness_gain", r.best.gain.sharpness},
+                               {"contrast_gain", r.best.gain.contrast},
+                               {"background_diff_gain", r.best.gain.background_diff},
+                               {"improves_all_on_every_object", r.best_improves_all_objects},
+                               {"combinations", std::uint64_t(r.combinations)}};
+}
+
+int run(const Args& args) {
+    if (!args.operands().empty()) args.usage_error("unexpected operand " + args.operands().front());
+    if (args.has("--dataset"))
+        for (const char* option : {"--sensor", "--simulate", "--grid", "--background-frames"})
+            if (args.has(option)) args.usage_error(std::string(option) + " does not apply to --dataset (the recording decides)");
+    const std::string out = args.value("--out").value_or("vkfuse-config.json");
+    StudyOptions options;
+    options.max_k = args.has("--max-k") ? parse_positive_int("--max-k", *args.value("--max-k")) : 3;
+    const Backend backend = parse_backend_option(args.value("--backend").value_or("auto"));
+    RecordOptions rec;
+    rec.grid = parse_grid("--grid", args.value("--grid").value_or("0,15"));
+    rec.background_frames =
+        args.has("--background-frames") ? parse_positive_int("--background-frames", *args.value("--background-frames")) : 4;
+
+    StopSignal stop;
+    ScratchDirectory scratch;
+    std::string source;
+    if (auto v = args.value("--dataset")) {
+        source = *v;
+        if (auto objects = args.value("--objects")) options.objects = split_list(*objects);
+    } else {
+        capture(args, scratch.dataset(), rec, stop);
+        source = "captured now";
+    }
+    const Dataset dataset = read_dataset(args.value("--dataset").value_or(scratch.dataset()));
+    std::optional<Context> context = open_backend(backend);
+    Progress progress("vkfuse tune");
+    options.progress = [&](std::size_t done, std::size_t total) {
+        if (stop.requested()) throw Error(ErrorKind::InvalidArgument, "tune: interrupted; nothing written");
+        progress.status("study: " + std::to_string(done) + " / " + std::to_string(total) + " method x combination steps");
+    };
+    const StudyResult result = run_study(dataset, options, context ? &*context : nullptr);
+    progress.finish();
+    const RunConfig config = winner(result);
+    const std::string text = run_config_json(config, tuned_json(result, source));
+    io::write_atomically(out, [&](std::FILE* f) { io::write_all(f, text, out); });
+    std::printf("%s: %s fused by %s (sharpness x%.3f, contrast x%.3f, background difference x%.3f%s); "
+                "vkfuse run --config %s\n",
+                out.c_str(), to_string(config.sequence).c_str(), result.best_best_method.c_str(),
+                result.best.gain.sharpness, result.best.gain.contrast, result.best.gain.background_diff,
+                result.best_improves_all_objects ? ", better on every object" : "", out.c_str());
+    return 0;
+}
+
+}  // namespace
+
+const Command tune_command{kSpec, run};
+
+}  // namespace vkfuse::cli
