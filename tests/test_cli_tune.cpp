@@ -80,5 +80,22 @@ TEST(CliTune, MalformedConfigsGetOneLine) {
     EXPECT_NE(missing.err.find("--config " + tmp.file("none.json")), std::string::npos) << missing.err;
 }
 
+// What would fail after the operator pressed every object fails before.
+TEST(CliTune, RefusesBeforeCapturingWhatCouldNotBeStudied) {
+    TempDir tmp;
+    const auto refused = [&](std::vector<std::string> argv, const std::string& fragment) {
+        const CliResult r = run_cli(argv);
+        EXPECT_EQ(r.status, 2) << r.out;
+        ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
+        EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("capturing"), std::string::npos) << "captured first: " << r.err;
+    };
+    refused({"tune", "--simulate", "--grid", "0,5", "--out", tmp.file("a.json")}, "no static setting");
+    refused({"tune", "--simulate", "--grid", "15", "--out", tmp.file("a.json")}, "one setting");
+    refused({"tune", "--simulate", "--max-k", "1", "--out", tmp.file("a.json")}, "--max-k 1");
+    refused({"tune", "--simulate", "--out", tmp.file("missing/a.json")}, "cannot write in");
+    refused({"tune", "--simulate", "--objects", "../x", "--out", tmp.file("a.json")}, "--objects");
+}
+
 }  // namespace
 }  // namespace vkfuse::test

@@ -124,6 +124,22 @@ TEST_F(Study, TheDeviceAgreesWithTheReferenceOnEveryFigure) {
     ASSERT_EQ(gpu.pairing.size(), 7u);
     for (std::size_t p = 0; p < cpu.pairing.size(); ++p)
         expect_close(gpu.pairing[p].gain, cpu.pairing[p].gain, 1e-4, "pairing " + std::to_string(p));
+    EXPECT_EQ(gpu.ranking_method, cpu.ranking_method);
+    for (std::size_t i = 0; i < 3; ++i) {
+        ASSERT_EQ(gpu.best_pairs[i].size(), cpu.best_pairs[i].size());
+        for (std::size_t p = 0; p < cpu.best_pairs[i].size(); ++p)
+            EXPECT_EQ(gpu.best_pairs[i][p].settings, cpu.best_pairs[i][p].settings) << "metric " << i << " rank " << p;
+        EXPECT_EQ(gpu.best_k[i], cpu.best_k[i]) << "metric " << i;
+    }
+    EXPECT_EQ(gpu.pairs_in_every_top, cpu.pairs_in_every_top);
+    EXPECT_EQ(gpu.best.settings, cpu.best.settings);
+    EXPECT_EQ(gpu.best_best_method, cpu.best_best_method);
+    EXPECT_EQ(gpu.best_improves_all_objects, cpu.best_improves_all_objects);
+    ASSERT_EQ(gpu.static_metrics.size(), 2u);
+    for (std::size_t o = 0; o < 2; ++o) {
+        EXPECT_NEAR(gpu.static_metrics[o].sharpness, cpu.static_metrics[o].sharpness, 1e-5 * cpu.static_metrics[o].sharpness);
+        EXPECT_NEAR(gpu.static_metrics[o].contrast, cpu.static_metrics[o].contrast, 1e-5 * cpu.static_metrics[o].contrast);
+    }
 }
 
 TEST_F(Study, TheAnalysisMatchesARecount) {
@@ -133,101 +149,143 @@ TEST_F(Study, TheAnalysisMatchesARecount) {
     ASSERT_EQ(r.settings, recount.grid);
     EXPECT_EQ(r.settings[r.static_setting], Illumination({15, 15, 15}));
     EXPECT_EQ(r.objects, recount.objects);
-    // Brovey over every pair and object: the share improving all metrics and
-    // the mean gains, from scratch.
-    const StudyMethod& brovey = method_named("brovey");
-    std::size_t improving = 0, n = 0;
-    Gains sum;
-    std::vector<std::pair<double, std::vector<std::size_t>>> by_sharpness;
+    // Every method on every pair and object, and every single frame, from
+    // scratch with the reference path.
+    const std::vector<StudyMethod> methods = study_methods();
+    std::vector<std::vector<std::size_t>> pairs;
     for (std::size_t a = 0; a < 8; ++a)
-        for (std::size_t b = a + 1; b < 8; ++b) {
-            double mean_sharpness = 0;
-            for (const std::string& o : recount.objects) {
-                const Gains g = recount.gains(o, {recount.grid[a], recount.grid[b]}, brovey.spec);
+        for (std::size_t b = a + 1; b < 8; ++b) pairs.push_back({a, b});
+    // gains[m][p][o]; singles[s][o]
+    std::vector<std::vector<std::vector<Gains>>> gains(methods.size());
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+        if (methods[m].name == "channel-sum") continue;
+        for (const auto& p : pairs) {
+            std::vector<Gains> per_object;
+            for (const std::string& o : recount.objects)
+                per_object.push_back(recount.gains(o, {recount.grid[p[0]], recount.grid[p[1]]}, methods[m].spec));
+            gains[m].push_back(per_object);
+        }
+    }
+    std::vector<std::vector<Gains>> singles;
+    for (std::size_t s = 0; s < 8; ++s) {
+        singles.emplace_back();
+        for (const std::string& o : recount.objects) singles.back().push_back(recount.gains(o, {recount.grid[s]}, {}));
+    }
+    const auto mean_of = [](const std::vector<Gains>& g) {
+        Gains m;
+        for (const Gains& x : g) {
+            m.sharpness += x.sharpness / double(g.size());
+            m.contrast += x.contrast / double(g.size());
+            m.background_diff += x.background_diff / double(g.size());
+        }
+        return m;
+    };
+    const auto mean3 = [](const Gains& g) { return (g.sharpness + g.contrast + g.background_diff) / 3; };
+
+    // Per method: the share improving all metrics and the mean gains.
+    std::size_t best = methods.size();
+    std::vector<double> share(methods.size(), 0);
+    std::vector<Gains> means(methods.size());
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+        ASSERT_EQ(r.methods[m].name, methods[m].name);
+        if (gains[m].empty()) {
+            EXPECT_EQ(r.methods[m].fusions, 0u) << "channel-sum takes exactly three settings";
+            continue;
+        }
+        std::vector<Gains> all;
+        std::size_t improving = 0;
+        for (const auto& p : gains[m])
+            for (const Gains& g : p) {
+                all.push_back(g);
                 improving += g.improves_all() ? 1 : 0;
-                ++n;
-                sum.sharpness += g.sharpness;
-                sum.contrast += g.contrast;
-                sum.background_diff += g.background_diff;
-                mean_sharpness += g.sharpness / 2;
             }
-            by_sharpness.push_back({mean_sharpness, {a, b}});
-        }
-    const auto it = std::find_if(r.methods.begin(), r.methods.end(), [](const auto& m) { return m.name == "brovey"; });
-    ASSERT_NE(it, r.methods.end());
-    EXPECT_EQ(it->fusions, 56u);
-    EXPECT_NEAR(it->improves_all_fraction, double(improving) / double(n), 1.0 / 56 + 1e-12);
-    expect_close(it->mean_gain, {sum.sharpness / n, sum.contrast / n, sum.background_diff / n}, 1e-4, "brovey");
-    // Nothing takes channel-sum with combinations of two.
-    const auto cs = std::find_if(r.methods.begin(), r.methods.end(), [](const auto& m) { return m.name == "channel-sum"; });
-    ASSERT_NE(cs, r.methods.end());
-    EXPECT_EQ(cs->fusions, 0u);
-    // best_method has the highest share; the pairs are ranked by its gains.
-    for (const auto& m : r.methods)
-        EXPECT_LE(m.improves_all_fraction, std::find_if(r.methods.begin(), r.methods.end(), [&](const auto& x) {
-                                               return x.name == r.best_method;
-                                           })->improves_all_fraction);
+        share[m] = double(improving) / double(all.size());
+        means[m] = mean_of(all);
+        EXPECT_EQ(r.methods[m].fusions, 56u);
+        EXPECT_NEAR(r.methods[m].improves_all_fraction, share[m], 1.0 / 56 + 1e-12) << methods[m].name;
+        expect_close(r.methods[m].mean_gain, means[m], 1e-4, methods[m].name);
+        if (best == methods.size() || share[m] > share[best] || (share[m] == share[best] && mean3(means[m]) > mean3(means[best])))
+            best = m;
+    }
+    EXPECT_EQ(r.best_method, methods[best].name);
+    EXPECT_EQ(r.ranking_method, r.best_method) << "pairs: channel-sum cannot win";
+    // The best pairs of the ranking method, per metric.
     for (std::size_t i = 0; i < 3; ++i) {
+        std::vector<std::pair<double, std::vector<std::size_t>>> ranked;
+        for (std::size_t p = 0; p < pairs.size(); ++p) ranked.push_back({mean_of(gains[best][p]).of(kAllMetrics[i]), pairs[p]});
+        std::stable_sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
         ASSERT_EQ(r.best_pairs[i].size(), 3u);
-        for (std::size_t p = 1; p < 3; ++p)
-            EXPECT_GE(r.best_pairs[i][p - 1].gain.of(kAllMetrics[i]), r.best_pairs[i][p].gain.of(kAllMetrics[i]));
-    }
-    if (r.best_method == "brovey") {
-        std::stable_sort(by_sharpness.begin(), by_sharpness.end(),
-                         [](const auto& x, const auto& y) { return x.first > y.first; });
-        EXPECT_EQ(r.best_pairs[0][0].settings, by_sharpness[0].second);
-    }
-    // The greedy search starts from the best single frame, and each step
-    // keeps the sequence before it.
-    const FusionSpec any;
-    for (std::size_t i = 0; i < 3; ++i) {
-        double best = -1;
-        std::size_t pick = 0;
-        for (std::size_t s = 0; s < 8; ++s) {
-            double mean = 0;
-            for (const std::string& o : recount.objects) mean += recount.gains(o, {recount.grid[s]}, any).of(kAllMetrics[i]) / 2;
-            if (mean > best) {
-                best = mean;
-                pick = s;
-            }
+        for (std::size_t p = 0; p < 3; ++p) {
+            EXPECT_EQ(r.best_pairs[i][p].settings, ranked[p].second) << "metric " << i << " rank " << p;
+            EXPECT_NEAR(r.best_pairs[i][p].gain.of(kAllMetrics[i]), ranked[p].first, 1e-4 * ranked[p].first);
         }
+    }
+    // Per metric and object, the size of the best combination of any method.
+    for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t o = 0; o < 2; ++o) {
+            double top = -1;
+            std::size_t k = 0;
+            for (std::size_t s = 0; s < 8; ++s)
+                if (singles[s][o].of(kAllMetrics[i]) > top) top = singles[s][o].of(kAllMetrics[i]), k = 1;
+            for (std::size_t m = 0; m < methods.size(); ++m)
+                for (const auto& p : gains[m])
+                    if (p[o].of(kAllMetrics[i]) > top) top = p[o].of(kAllMetrics[i]), k = 2;
+            EXPECT_EQ(r.best_k[i][o], k) << "metric " << i << " object " << o;
+        }
+    // The greedy search: the best single frame, then the best second setting.
+    for (std::size_t i = 0; i < 3; ++i) {
+        std::size_t first = 0;
+        for (std::size_t s = 1; s < 8; ++s)
+            if (mean_of(singles[s]).of(kAllMetrics[i]) > mean_of(singles[first]).of(kAllMetrics[i])) first = s;
         ASSERT_EQ(r.greedy[i].size(), 3u);
-        EXPECT_EQ(r.greedy[i][0].sequence, std::vector<std::size_t>{pick}) << "metric " << i;
-        EXPECT_NEAR(r.greedy[i][0].value, best, 1e-5 * best);
-        for (std::size_t step = 1; step < 3; ++step) {
-            const auto& seq = r.greedy[i][step].sequence;
-            ASSERT_EQ(seq.size(), step + 1);
-            EXPECT_TRUE(std::equal(r.greedy[i][step - 1].sequence.begin(), r.greedy[i][step - 1].sequence.end(), seq.begin()));
+        EXPECT_EQ(r.greedy[i][0].sequence, std::vector<std::size_t>{first}) << "metric " << i;
+        EXPECT_NEAR(r.greedy[i][0].value, mean_of(singles[first]).of(kAllMetrics[i]), 1e-5);
+        double top = -1;
+        std::size_t second = 0;
+        for (std::size_t p = 0; p < pairs.size(); ++p) {
+            if (pairs[p][0] != first && pairs[p][1] != first) continue;
+            const double v = mean_of(gains[best][p]).of(kAllMetrics[i]);
+            if (v > top) top = v, second = pairs[p][0] == first ? pairs[p][1] : pairs[p][0];
         }
+        EXPECT_EQ(r.greedy[i][1].sequence, (std::vector<std::size_t>{first, second})) << "metric " << i;
+        EXPECT_NEAR(r.greedy[i][1].value, top, 1e-4 * top);
+        EXPECT_EQ(r.greedy[i][2].sequence.size(), 3u);
+        EXPECT_TRUE(std::equal(r.greedy[i][1].sequence.begin(), r.greedy[i][1].sequence.end(), r.greedy[i][2].sequence.begin()));
     }
-    // The pairing of the static setting with (0,15,0), recounted.
-    const std::size_t green = std::size_t(std::find(r.settings.begin(), r.settings.end(), Illumination({0, 15, 0})) -
-                                          r.settings.begin());
-    const auto pair = std::find_if(r.pairing.begin(), r.pairing.end(),
-                                   [&](const auto& p) { return p.settings == std::vector<std::size_t>{green}; });
-    ASSERT_NE(pair, r.pairing.end());
-    const auto ranking = std::find_if(r.methods.begin(), r.methods.end(), [&](const auto& m) { return m.name == r.best_method; });
-    if (ranking != r.methods.end() && r.best_method != "channel-sum") {
-        Gains mean;
-        for (const std::string& o : recount.objects) {
-            const Gains g = recount.gains(o, {Illumination({0, 15, 0}), Illumination({15, 15, 15})},
-                                          method_named(r.best_method).spec);
-            mean.sharpness += g.sharpness / 2;
-            mean.contrast += g.contrast / 2;
-            mean.background_diff += g.background_diff / 2;
-        }
-        expect_close(pair->gain, mean, 1e-4, "(15,15,15) + (0,15,0)");
+    // The pairing: the static setting with each other one.
+    ASSERT_EQ(r.pairing.size(), 7u);
+    for (const auto& pairing : r.pairing) {
+        const std::size_t s = pairing.settings[0];
+        const std::vector<std::size_t> pair = {std::min(s, r.static_setting), std::max(s, r.static_setting)};
+        const std::size_t p = std::size_t(std::find(pairs.begin(), pairs.end(), pair) - pairs.begin());
+        expect_close(pairing.gain, mean_of(gains[best][p]), 1e-4, "pairing with " + r.settings[s].to_string());
     }
-    // Best overall: a scored pair, and when it improves everything on every
-    // object, its gains all exceed 1.
-    EXPECT_EQ(r.best.settings.size(), 2u);
-    if (r.best_improves_all_objects) {
-        EXPECT_TRUE(r.best.gain.improves_all());
+    // Best overall: the highest mean gain among the (pair, method) improving
+    // everything on every object, else among all.
+    for (const bool everywhere : {true, false}) {
+        double top = -1;
+        std::vector<std::size_t> settings;
+        std::string method;
+        for (std::size_t m = 0; m < methods.size(); ++m)
+            for (std::size_t p = 0; p < gains[m].size(); ++p) {
+                if (everywhere && !(gains[m][p][0].improves_all() && gains[m][p][1].improves_all())) continue;
+                if (mean3(mean_of(gains[m][p])) > top) top = mean3(mean_of(gains[m][p])), settings = pairs[p], method = methods[m].name;
+            }
+        if (top < 0) continue;
+        EXPECT_EQ(r.best_improves_all_objects, everywhere);
+        EXPECT_EQ(r.best.settings, settings);
+        EXPECT_EQ(r.best_best_method, method);
+        break;
     }
-    for (std::size_t i = 0; i < 3; ++i) {
-        ASSERT_EQ(r.best_k[i].size(), 2u);
-        for (std::size_t k : r.best_k[i]) EXPECT_TRUE(k == 1 || k == 2);
-    }
+}
+
+TEST(StudyOrder, ChannelSumTakesEachChannelFromTheFrameLitMostByItsLed) {
+    const std::vector<Illumination> settings = {Illumination({0, 0, 15}), Illumination({0, 15, 0}),
+                                                Illumination({15, 0, 0}), Illumination({15, 15, 15})};
+    const StudyMethod& channel_sum = method_named("channel-sum");
+    EXPECT_EQ(fusion_order(channel_sum, settings, {0, 1, 2}), (std::vector<std::size_t>{2, 1, 0}));
+    EXPECT_EQ(fusion_order(channel_sum, settings, {3, 0, 2}), (std::vector<std::size_t>{2, 3, 0}));
+    EXPECT_EQ(fusion_order(method_named("wavelet-bior4.4"), settings, {2, 0, 1}), (std::vector<std::size_t>{0, 1, 2}));
 }
 
 TEST_F(Study, ChannelSumTakesExactlyThreeSettings) {
@@ -245,7 +303,10 @@ TEST_F(Study, BadDatasetsAndOptionsGetOneLine) {
     StudyOptions unknown = small_options(2);
     unknown.objects = {"ridge", "teapot"};
     expect_error([&] { run_study(d, unknown, nullptr); }, dir_, ErrorKind::InvalidArgument, "no object \"teapot\"");
-    expect_error([&] { run_study(d, small_options(0), nullptr); }, "study", ErrorKind::InvalidArgument, "max_k");
+    expect_error([&] { run_study(d, small_options(1), nullptr); }, "study", ErrorKind::InvalidArgument, "at least 2");
+    StudyOptions twice = small_options(2);
+    twice.objects = {"ridge", "dots", "ridge"};
+    expect_error([&] { run_study(d, twice, nullptr); }, dir_, ErrorKind::InvalidArgument, "named twice");
     StudyOptions sensor = small_options(2);
     sensor.serial = "NOPE";
     expect_error([&] { run_study(d, sensor, nullptr); }, dir_, ErrorKind::InvalidArgument, "NOPE");

@@ -57,6 +57,7 @@ int run(const Args& args) {
     const bool quick = args.has("--quick");
     if (quick && args.has("--max-k")) args.usage_error("--quick and --max-k both choose the combinations");
     options.max_k = quick ? 3 : args.has("--max-k") ? parse_positive_int("--max-k", *args.value("--max-k")) : 5;
+    if (options.max_k < 2) args.usage_error("--max-k 1: a study fuses combinations of at least 2 settings");
     if (auto v = args.value("--objects")) options.objects = split_list(*v);
     if (auto v = args.value("--sensor")) options.serial = *v;
     if (auto v = args.value("--greedy-max")) options.greedy_max = parse_positive_int("--greedy-max", *v);

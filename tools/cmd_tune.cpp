@@ -3,6 +3,7 @@
 // takes.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "backend.hpp"
 #include "commands.hpp"
 #include "io/atomic_write.hpp"
+#include "io/path_component.hpp"
 #include "progress.hpp"
 #include "run_config.hpp"
 #include "run_sensors.hpp"
@@ -142,11 +144,29 @@ int run(const Args& args) {
     const std::string out = args.value("--out").value_or("vkfuse-config.json");
     StudyOptions options;
     options.max_k = args.has("--max-k") ? parse_positive_int("--max-k", *args.value("--max-k")) : 3;
+    if (options.max_k < 2) args.usage_error("--max-k 1: a study fuses combinations of at least 2 settings");
     const Backend backend = parse_backend_option(args.value("--backend").value_or("auto"));
     RecordOptions rec;
     rec.grid = parse_grid("--grid", args.value("--grid").value_or("0,15"));
     rec.background_frames =
         args.has("--background-frames") ? parse_positive_int("--background-frames", *args.value("--background-frames")) : 4;
+
+    // Everything that could fail after the capture is checked before it, so
+    // nobody presses objects for nothing.
+    if (!args.has("--dataset")) {
+        const LedLayout leds = LedLayout::digit();
+        if (rec.grid.size() < 2) args.usage_error("--grid: one setting; a study fuses two or more");
+        if (std::none_of(rec.grid.begin(), rec.grid.end(), [&](const Illumination& s) {
+                return std::all_of(s.levels().begin(), s.levels().end(), [&](int v) { return v == leds.max_level; });
+            }))
+            args.usage_error("--grid: no level " + std::to_string(leds.max_level) +
+                             ", so no static setting (every LED at full) to measure the gains against");
+    }
+    if (auto v = args.value("--objects"))
+        for (const std::string& o : split_list(*v)) io::check_plain_component(o, "--objects");
+    const std::filesystem::path parent = std::filesystem::absolute(out).parent_path();
+    if (::access(parent.c_str(), W_OK) != 0)
+        throw Error(ErrorKind::Io, out + ": cannot write in " + parent.string());
 
     StopSignal stop;
     ScratchDirectory scratch;

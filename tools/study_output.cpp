@@ -91,6 +91,7 @@ std::string results_json(const std::string& dataset, const StudyResult& r, const
         {"dataset", dataset},
         {"backend", r.backend},
         {"best_method", r.best_method},
+        {"ranking_method", r.ranking_method},
         {"methods", std::move(methods)},
         {"pairing", std::move(pairing)},
         {"greedy", std::move(greedy)},
@@ -146,7 +147,7 @@ std::string report_md(const std::string& dataset, const StudyResult& r, const St
     md += "1. *Wavelet fusion is the most likely to improve every metric at once*: " + verdict(f.wavelet_most_likely) +
           ". The most likely here is " + r.best_method + " (see the table below).\n";
     md += "2. *(15,15,15) + (0,15,0) is among the best pairs*: ";
-    const std::string top = "the top " + std::to_string(r.best_pairs[0].size()) + " pairs of " + r.best_method;
+    const std::string top = "the top " + std::to_string(r.best_pairs[0].size()) + " pairs of " + r.ranking_method;
     md += !f.has_best_pair ? "not tested: the dataset lacks one of the two settings.\n"
           : f.best_pair_among_best
               ? verdict(true) + ": it is among " + top + " by " + f.best_pair_metrics + " (listed below).\n"
@@ -167,7 +168,7 @@ std::string report_md(const std::string& dataset, const StudyResult& r, const St
         md += "| " + m.name + " | " + percent(m.improves_all_fraction) + " | " + fixed(m.mean_gain.sharpness) + " | " +
               fixed(m.mean_gain.contrast) + " | " + fixed(m.mean_gain.background_diff) + " | " +
               std::to_string(m.fusions) + " |\n";
-    md += "\n![methods](methods.svg)\n\n## Best pairs (" + (r.best_pairs[0].empty() ? std::string("none scored") : r.best_method) + ")\n\n";
+    md += "\n![methods](methods.svg)\n\n## Best pairs (" + (r.best_pairs[0].empty() ? std::string("none scored") : r.ranking_method) + ")\n\n";
     for (std::size_t i = 0; i < 3; ++i) {
         md += "- " + std::string(to_string(kAllMetrics[i])) + ":";
         for (const auto& p : r.best_pairs[i])
@@ -177,14 +178,14 @@ std::string report_md(const std::string& dataset, const StudyResult& r, const St
     md += "- among the top of every metric on every object: " +
           (r.pairs_in_every_top.empty() ? std::string("none") : std::string());
     for (const auto& p : r.pairs_in_every_top) md += names(r, p) + "; ";
-    md += "\n\n## Greedy sequences\n\n![greedy](greedy.svg)\n\n";
+    md += "\n\n## Greedy sequences (" + r.ranking_method + ")\n\n![greedy](greedy.svg)\n\n";
     for (std::size_t i = 0; i < 3; ++i) {
         md += "- " + std::string(to_string(kAllMetrics[i])) + ": ";
         for (const auto& s : r.greedy[i]) md += "n=" + std::to_string(s.n) + " " + fixed(s.value) + ", ";
         if (!r.greedy[i].empty()) md += "sequence " + names(r, r.greedy[i].back().sequence, ", ");
         md += "\n";
     }
-    md += "\n## The static setting paired with each other\n\n![pairing](pairing.svg)\n\n";
+    md += "\n## The static setting paired with each other (" + r.ranking_method + ")\n\n![pairing](pairing.svg)\n\n";
     md += "## Best overall\n\n" + names(r, r.best.settings) + " fused by " + r.best_best_method + ": sharpness x" +
           fixed(r.best.gain.sharpness) + ", contrast x" + fixed(r.best.gain.contrast) + ", background difference x" +
           fixed(r.best.gain.background_diff) +

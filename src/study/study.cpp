@@ -63,7 +63,14 @@ public:
           methods_(study_methods()), evaluator_(data_, context) {
         for (const StudyMethod& m : methods_)
             for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), data_.settings.size()); ++k)
-                if (takes(m, k)) validate(m.spec, data_.height, data_.width, 3, int(k));
+                if (takes(m, k)) try {
+                        validate(m.spec, data_.height, data_.width, 3, int(k));
+                    } catch (const Error& e) {
+                        throw Error(ErrorKind::InvalidArgument,
+                                    dataset.directory + ": " + std::to_string(data_.width) + "x" +
+                                        std::to_string(data_.height) + " frames do not suit " + m.name + " (" +
+                                        e.what() + ")");
+                    }
         const std::size_t n = data_.settings.size();
         std::size_t count = 0;
         for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), n); ++k) count += choose(n, k);
@@ -93,6 +100,9 @@ public:
         score_table();
         for (const StudyMethod& m : methods_) r.methods.push_back({m.name, 0, {}, 0});
         ranking_ = analyse(table_, options_.top, r);
+        r.ranking_method = methods_[ranking_].name;
+        for (const StudyMethod& m : methods_)
+            if (m.name == r.best_best_method) r.best.settings = fusion_order(m, data_.settings, r.best.settings);
         greedy(r);
         pair_with_static(r);
         r.combinations = table_.combinations.size() + data_.settings.size();
@@ -104,7 +114,8 @@ public:
 private:
     // The options are checked before any frame is read.
     static const StudyOptions& checked(const StudyOptions& o) {
-        if (o.max_k < 1) throw Error(ErrorKind::InvalidArgument, "study: max_k must be at least 1");
+        if (o.max_k < 2)
+            throw Error(ErrorKind::InvalidArgument, "study: max_k must be at least 2 (one setting alone is no fusion)");
         if (o.greedy_max < 1) throw Error(ErrorKind::InvalidArgument, "study: greedy_max must be at least 1");
         if (o.top < 1) throw Error(ErrorKind::InvalidArgument, "study: top must be at least 1");
         return o;
@@ -146,7 +157,8 @@ private:
         for (std::size_t c = 0; c < table_.combinations.size(); ++c)
             for (std::size_t m = 0; m < M; ++m) {
                 if (!takes(methods_[m], table_.combinations[c].size())) continue;
-                const std::vector<Gains> g = gains_of(evaluator_.score(methods_[m], table_.combinations[c]), reference_);
+                const std::vector<std::size_t> order = fusion_order(methods_[m], data_.settings, table_.combinations[c]);
+                const std::vector<Gains> g = gains_of(evaluator_.score(methods_[m], order), reference_);
                 std::copy(g.begin(), g.end(), table_.gains.begin() + std::ptrdiff_t((c * M + m) * O));
                 table_.scored[c * M + m] = true;
                 fusions_ += O;
@@ -236,6 +248,22 @@ std::vector<StudyMethod> study_methods() {
         }
     }
     return out;
+}
+
+std::vector<std::size_t> fusion_order(const StudyMethod& method, const std::vector<Illumination>& settings,
+                                      std::vector<std::size_t> combination) {
+    std::sort(combination.begin(), combination.end());
+    if (method.spec.method != Method::ChannelSum) return combination;
+    std::vector<std::size_t> best = combination, order = combination;
+    const auto score = [&](const std::vector<std::size_t>& o) {
+        int sum = 0;
+        for (std::size_t channel = 0; channel < o.size() && channel < 3; ++channel)
+            sum += settings[o[channel]].level(int(channel));
+        return sum;
+    };
+    while (std::next_permutation(order.begin(), order.end()))
+        if (score(order) > score(best)) best = order;
+    return best;
 }
 
 StudyResult run_study(const Dataset& dataset, const StudyOptions& options, Context* context) {

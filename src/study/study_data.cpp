@@ -43,6 +43,8 @@ StudyData load_study_data(const Dataset& dataset, const std::string& serial, con
         }
     }
     if (d.settings.empty()) fail(dataset, "sensor " + sensor.info.serial + " has no background frames");
+    if (d.settings.size() < 2)
+        fail(dataset, "sensor " + sensor.info.serial + " has one setting only; a study fuses two or more");
     const int full = sensor.info.leds.max_level;
     const auto is_static = [&](const Illumination& s) {
         return std::all_of(s.levels().begin(), s.levels().end(), [&](int level) { return level == full; });
@@ -52,10 +54,25 @@ StudyData load_study_data(const Dataset& dataset, const std::string& serial, con
         fail(dataset, "no background under the static setting (every LED at " + std::to_string(full) +
                           "), which every gain is measured against");
 
-    d.objects = objects.empty() ? dataset.objects() : objects;
-    if (d.objects.empty()) fail(dataset, "no object frames, only backgrounds");
-    const std::vector<std::string> known = dataset.objects();
-    for (const std::string& object : d.objects) {
+    // The objects this sensor pressed, in recording order.
+    std::vector<std::string> known;
+    for (const DatasetTake& take : sensor.takes)
+        if (!take.background && std::find(known.begin(), known.end(), take.object) == known.end())
+            known.push_back(take.object);
+    d.objects = objects.empty() ? known : objects;
+    if (d.objects.empty()) fail(dataset, "sensor " + sensor.info.serial + " has no object frames, only backgrounds");
+    if (d.objects.size() > kMaxObjects)
+        fail(dataset, std::to_string(d.objects.size()) + " objects, more than a study takes (" +
+                          std::to_string(kMaxObjects) + ")");
+    const std::size_t frame_bytes = std::size_t(d.height) * std::size_t(d.width) * 3;
+    if (d.objects.size() * d.settings.size() * frame_bytes > kMaxFrameBytes)
+        fail(dataset, std::to_string(d.objects.size()) + " objects x " + std::to_string(d.settings.size()) +
+                          " settings of " + std::to_string(d.width) + "x" + std::to_string(d.height) +
+                          " frames are more than a study holds in memory (" + std::to_string(kMaxFrameBytes >> 30) +
+                          " GiB); study fewer objects");
+    for (auto it = d.objects.begin(); it != d.objects.end(); ++it) {
+        const std::string& object = *it;
+        if (std::find(d.objects.begin(), it, object) != it) fail(dataset, "object \"" + object + "\" named twice");
         if (std::find(known.begin(), known.end(), object) == known.end())
             fail(dataset, "no object \"" + object + "\" for sensor " + sensor.info.serial);
         std::vector<const DatasetFrame*> first(d.settings.size(), nullptr);

@@ -12,6 +12,10 @@ namespace vkfuse::study {
 // Settings a study takes at most: combinations grow as n^5, and the dataset
 // must not choose how much time and memory the study takes.
 inline constexpr std::size_t kMaxSettings = 64;
+// Objects, and the bytes of the frames held (objects x settings x H x W x 3),
+// a study takes at most, for the same reason.
+inline constexpr std::size_t kMaxObjects = 64;
+inline constexpr std::size_t kMaxFrameBytes = std::size_t(2) << 30;
 
 struct StudyData {
     int height = 0;
@@ -26,10 +30,11 @@ struct StudyData {
 };
 
 // Reads the frames of sensor `serial` (empty: the dataset's first) and of
-// `objects` (empty: all). Throws Error(InvalidArgument) naming the dataset
-// for a missing sensor, object, background or frame, a dataset without the
-// static setting, or one with more than kMaxSettings settings; frames that
-// are missing on disk or of another shape throw as load_frame does.
+// `objects` (empty: every object that sensor pressed). Throws
+// Error(InvalidArgument) naming the dataset for a missing sensor, object,
+// background or frame, an object named twice, a dataset without the static
+// setting or with fewer than two settings, or beyond the bounds above;
+// frames that are missing on disk or of another shape throw as load_frame does.
 StudyData load_study_data(const Dataset& dataset, const std::string& serial, const std::vector<std::string>& objects);
 
 }  // namespace vkfuse::study

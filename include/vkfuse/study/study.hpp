@@ -35,6 +35,14 @@ struct StudyMethod {
 // Every method, the wavelet once per family, in the method table's order.
 std::vector<StudyMethod> study_methods();
 
+// The order `method` fuses a combination in (indices into settings, given in
+// any order): ascending, except for channel-sum, which takes R, G and B from
+// the frames lit most by the red, green and blue LED (the permutation with
+// the highest sum of each frame's level of its channel; the earliest in
+// ascending order on ties).
+std::vector<std::size_t> fusion_order(const StudyMethod& method, const std::vector<Illumination>& settings,
+                                      std::vector<std::size_t> combination);
+
 // A fused image's metrics divided by those of the same object's static frame:
 // above 1 is an improvement.
 struct Gains {
@@ -49,7 +57,7 @@ struct Gains {
 struct StudyOptions {
     std::string serial;                // the dataset's sensor; empty: its first
     std::vector<std::string> objects;  // empty: every object the dataset holds
-    int max_k = 5;                     // combinations of 1..max_k settings
+    int max_k = 5;                     // combinations of 1..max_k settings (at least 2)
     int greedy_max = 12;               // greedy sequences up to this many settings
     int top = 10;                      // best pairs kept per metric
     // Called after each step (one method on one combination, for every
@@ -81,15 +89,19 @@ struct StudyResult {
     // Highest improves_all_fraction; among equal shares, the highest mean of
     // the three mean gains.
     std::string best_method;
-    // Per metric (kAllMetrics order), the `top` pairs of best_method by mean gain.
+    // The method pairs are ranked by and the greedy search and pairing use:
+    // best_method, unless that is channel-sum (exactly three settings), then
+    // the best of the methods taking any number.
+    std::string ranking_method;
+    // Per metric (kAllMetrics order), the `top` pairs of ranking_method by mean gain.
     std::array<std::vector<Scored>, 3> best_pairs;
     // Pairs among the top of all three metrics for one object, and for every object.
     std::vector<std::vector<std::vector<std::size_t>>> pairs_in_every_top_per_object;
     std::vector<std::vector<std::size_t>> pairs_in_every_top;
-    // The static setting fused (best_method) with each other one.
+    // The static setting fused (ranking_method) with each other one.
     std::vector<Scored> pairing;
     // Per metric: the best single setting, then each step adds the setting
-    // that raises the metric's mean gain most (best_method).
+    // that raises the metric's mean gain most (ranking_method).
     struct Step {
         std::size_t n = 0;
         std::vector<std::size_t> sequence;  // in the order added
@@ -99,9 +111,9 @@ struct StudyResult {
     // Per metric and object, how many settings the best combination of any
     // method has (1: a single frame beats every fusion).
     std::array<std::vector<std::size_t>, 3> best_k;
-    // The combination and method with the highest mean of the three mean
-    // gains among those improving every metric on every object (or, when none
-    // does, among all: improves_all_objects says which).
+    // The combination (in fusion order) and method with the highest mean of
+    // the three mean gains among those improving every metric on every object
+    // (or, when none does, among all: improves_all_objects says which).
     Scored best;
     std::string best_best_method;
     bool best_improves_all_objects = false;
@@ -113,8 +125,9 @@ struct StudyResult {
 
 // Runs the study on context's device, or on the CPU reference without one.
 // Throws Error naming the dataset for a sensor, object or setting that is
-// missing, a dataset without the static setting, or more combinations than a
-// study takes (a dataset's size never chooses how much memory is used).
+// missing, a dataset without the static setting, frames too small for a
+// method, or more combinations, objects or frames than a study takes (a
+// dataset's size never chooses how much memory is used).
 StudyResult run_study(const Dataset& dataset, const StudyOptions& options, Context* context);
 
 }  // namespace vkfuse
