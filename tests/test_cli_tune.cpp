@@ -45,12 +45,21 @@ TEST(CliTune, ADatasetsWinnerRunsAsAConfig) {
 TEST(CliTune, CapturesFromTheSimulatedDigit) {
     TempDir tmp;
     const std::string config = tmp.file("sim.json");
+    const std::string kept = tmp.file("kept");
     const CliResult tune = run_cli({"tune", "--simulate", "--objects", "coin", "--grid", "0,15", "--max-k", "2",
-                                    "--background-frames", "1", "--out", config});
+                                    "--background-frames", "1", "--keep", kept, "--out", config});
     ASSERT_EQ(tune.status, 0) << tune.err;
     EXPECT_NE(tune.err.find("capturing from the simulated DIGIT"), std::string::npos) << tune.err;
     const json::Value c = json::parse(read_bytes(config), config);
-    EXPECT_EQ(member(member(c, "tuned"), "source").string(), "captured now");
+    EXPECT_EQ(member(member(c, "tuned"), "source").string(), kept);
+    // The frames kept are a dataset the study takes, and it agrees.
+    const Dataset d = read_dataset(kept);
+    ASSERT_EQ(d.sensors.size(), 1u);
+    EXPECT_EQ(d.objects(), std::vector<std::string>{"coin"});
+    const CliResult study = run_cli({"study", kept, "--max-k", "2", "--out", tmp.file("study")});
+    ASSERT_EQ(study.status, 0) << study.err;
+    const json::Value results = json::parse(read_bytes(tmp.file("study/results.json")), "results.json");
+    EXPECT_EQ(member(member(results, "best"), "method").string(), member(member(c, "tuned"), "method").string());
     const CliResult run = run_cli({"run", "--config", config, "--cycles", "1", "--virtual-clock"});
     EXPECT_EQ(run.status, 0) << run.err;
 }

@@ -16,6 +16,7 @@
 #include "run_config.hpp"
 #include "run_sensors.hpp"
 #include "sim_record.hpp"
+#include "staged_directory.hpp"
 #include "stop_signal.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/study/study.hpp"
@@ -32,6 +33,7 @@ constexpr OptionSpec kOptions[] = {
     {"--grid", "", "V,V", "LED levels 0..15; every r,g,b combination is captured (default 0,15: 8 settings)"},
     {"--background-frames", "", "N", "no-contact frames averaged per setting (default 4)"},
     {"--max-k", "", "N", "combinations of 1..N settings (default 3)"},
+    {"--keep", "", "DIR", "also keep the captured frames as a dataset (a new directory) for vkfuse study or run --replay"},
     kBackendOption,
 };
 
@@ -44,7 +46,8 @@ constexpr CommandSpec kSpec{
     "setting of --grid and the backgrounds; runs `vkfuse study` on them; and writes\n"
     "the combination and method that improve sharpness, contrast and difference\n"
     "with background the most (on every object where one does) as FILE, which\n"
-    "`vkfuse run --config FILE` uses.",
+    "`vkfuse run --config FILE` uses. --keep DIR keeps the frames captured: how a\n"
+    "real DIGIT's dataset for `vkfuse study` is recorded.",
     kOptions,
     "vkfuse tune --out digit.json && vkfuse run --config digit.json",
 };
@@ -139,7 +142,7 @@ json::Value tuned_json(const StudyResult& r, const std::string& source) {
 int run(const Args& args) {
     if (!args.operands().empty()) args.usage_error("unexpected operand " + args.operands().front());
     if (args.has("--dataset"))
-        for (const char* option : {"--sensor", "--simulate", "--grid", "--background-frames"})
+        for (const char* option : {"--sensor", "--simulate", "--grid", "--background-frames", "--keep"})
             if (args.has(option)) args.usage_error(std::string(option) + " does not apply to --dataset (the recording decides)");
     const std::string out = args.value("--out").value_or("vkfuse-config.json");
     StudyOptions options;
@@ -170,15 +173,24 @@ int run(const Args& args) {
 
     StopSignal stop;
     ScratchDirectory scratch;
-    std::string source;
+    // --keep: captured into a staged directory, published once the capture
+    // is complete (whatever the study then does); otherwise into scratch.
+    std::optional<StagedDirectory> keep;
+    if (auto v = args.value("--keep")) keep.emplace(*v, StagedDirectory::Policy{"--keep", false, nullptr, ""});
+    std::string source, dataset_dir;
     if (auto v = args.value("--dataset")) {
-        source = *v;
+        source = dataset_dir = *v;
         if (auto objects = args.value("--objects")) options.objects = split_list(*objects);
     } else {
-        capture(args, scratch.dataset(), rec, stop);
+        capture(args, keep ? keep->path() : scratch.dataset(), rec, stop);
         source = "captured now";
+        dataset_dir = scratch.dataset();
+        if (keep) {
+            keep->publish();
+            source = dataset_dir = keep->where();
+        }
     }
-    const Dataset dataset = read_dataset(args.value("--dataset").value_or(scratch.dataset()));
+    const Dataset dataset = read_dataset(dataset_dir);
     std::optional<Context> context = open_backend(backend);
     Progress progress("vkfuse tune");
     options.progress = [&](std::size_t done, std::size_t total) {
