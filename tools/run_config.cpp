@@ -1,9 +1,8 @@
 #include "run_config.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sys/stat.h>
 
+#include "io/file_bytes.hpp"
 #include "io/json_value.hpp"
 #include "vkfuse/core/error.hpp"
 
@@ -41,20 +40,13 @@ std::string run_config_json(const RunConfig& c, json::Value tuned) {
 
 RunConfig read_run_config(const std::string& path) {
     const std::string subject = "--config " + path;
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) throw Error(ErrorKind::Io, subject + ": cannot read it");
-    if (!S_ISREG(st.st_mode)) throw Error(ErrorKind::InvalidArgument, subject + ": not a regular file");
-    if (std::size_t(st.st_size) > kMaxConfigBytes)
-        throw Error(ErrorKind::InvalidArgument, subject + ": " + std::to_string(st.st_size) +
-                                                    " bytes, more than a configuration takes (1 MiB)");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(ErrorKind::Io, subject + ": cannot read it");
-    // One byte more than the limit: a file that grew since stat() is refused too.
-    std::string text(kMaxConfigBytes + 1, '\0');
-    in.read(text.data(), std::streamsize(text.size()));
-    text.resize(std::size_t(in.gcount()));
-    if (text.size() > kMaxConfigBytes)
-        throw Error(ErrorKind::InvalidArgument, subject + ": more than a configuration takes (1 MiB)");
+    std::string text;
+    try {
+        const std::vector<unsigned char> bytes = io::read_file_bytes(path, kMaxConfigBytes);
+        text.assign(bytes.begin(), bytes.end());
+    } catch (const Error& e) {
+        throw Error(e.kind(), "--config " + std::string(e.what()));
+    }
     json::Value root;
     try {
         root = json::parse(text, path);

@@ -25,9 +25,9 @@ struct RunConfig {
 // The file's text for config, with `tuned` (null: left out).
 std::string run_config_json(const RunConfig& config, json::Value tuned);
 
-// Reads and checks path (at most 1 MiB). Throws Error(InvalidArgument)
-// "--config <path>: <problem>" for anything malformed, Error(Io) when it
-// cannot be read.
+// Reads and checks path (at most 1 MiB, read by io::read_file_bytes).
+// Throws Error "--config <path>: <problem>": InvalidArgument for anything
+// malformed, Format for a file over the limit, Io when it cannot be read.
 RunConfig read_run_config(const std::string& path);
 
 }  // namespace vkfuse::cli
