@@ -66,3 +66,20 @@ void rule_add(inout RuleState st, uint rule, uint k, float v) {
 float rule_result(RuleState st, uint rule, uint frames) {
     return rule == RULE_MEAN ? st.sum / float(frames) : st.pick;
 }
+
+// The same for four neighbouring coefficients under one rule.
+void rule_add4(uint rule, inout vec4 pick, inout vec4 sum, uint k, vec4 v) {
+    if (rule == RULE_MEAN) {
+        sum = k == 0u ? v : sum + v;
+    } else if (k == 0u) {
+        pick = v;
+    } else if (rule == RULE_MAX_ABS) {
+        pick = mix(pick, v, greaterThan(abs(v), abs(pick)));  // strict: ties keep the lowest frame
+    } else if (rule == RULE_MAX) {
+        pick = max(pick, v);
+    } else {
+        pick = min(pick, v);
+    }
+}
+
+vec4 rule_result4(uint rule, uint frames, vec4 pick, vec4 sum) { return rule == RULE_MEAN ? sum / float(frames) : pick; }

@@ -19,22 +19,6 @@ layout(push_constant, std430) uniform Push {
 } pc;
 #include "pyr_up4.glsl"
 
-void rule_add4(inout vec4 pick, inout vec4 sum, uint k, vec4 v) {
-    if (pc.rule == RULE_MEAN) {
-        sum = k == 0u ? v : sum + v;
-    } else if (k == 0u) {
-        pick = v;
-    } else if (pc.rule == RULE_MAX_ABS) {
-        pick = mix(pick, v, greaterThan(abs(v), abs(pick)));  // strict: ties keep the lowest frame
-    } else if (pc.rule == RULE_MAX) {
-        pick = max(pick, v);
-    } else {
-        pick = min(pick, v);
-    }
-}
-
-vec4 rule_result4(vec4 pick, vec4 sum) { return pc.rule == RULE_MEAN ? sum / float(pc.frames) : pick; }
-
 void main() {
     int j = int(gl_GlobalInvocationID.x) * 4, i = int(gl_GlobalInvocationID.y);
     uint z = gl_WorkGroupID.z;  // s * C + c
@@ -49,18 +33,18 @@ void main() {
         uint plane = (s * pc.frames + k) * pc.channels + c;
         Up4 up = pyr_up_quad(plane * uint(pc.cw * pc.ch), i, j);
         uint g = plane * plane_size / 4u;
-        rule_add4(pick[0], sum[0], k, vec4(BUF(src4).v[g + q0]) - interleave_lo(up.even0, up.odd0));
-        rule_add4(pick[1], sum[1], k, vec4(BUF(src4).v[g + q0 + 1u]) - interleave_hi(up.even0, up.odd0));
+        rule_add4(pc.rule, pick[0], sum[0], k, vec4(BUF(src4).v[g + q0]) - interleave_lo(up.even0, up.odd0));
+        rule_add4(pc.rule, pick[1], sum[1], k, vec4(BUF(src4).v[g + q0 + 1u]) - interleave_hi(up.even0, up.odd0));
         if (second_row) {
-            rule_add4(pick[2], sum[2], k, vec4(BUF(src4).v[g + q2]) - interleave_lo(up.even1, up.odd1));
-            rule_add4(pick[3], sum[3], k, vec4(BUF(src4).v[g + q2 + 1u]) - interleave_hi(up.even1, up.odd1));
+            rule_add4(pc.rule, pick[2], sum[2], k, vec4(BUF(src4).v[g + q2]) - interleave_lo(up.even1, up.odd1));
+            rule_add4(pc.rule, pick[3], sum[3], k, vec4(BUF(src4).v[g + q2 + 1u]) - interleave_hi(up.even1, up.odd1));
         }
     }
     uint d = z * plane_size / 4u;
-    BUF(dst4).v[d + q0] = TO_PLANE4(rule_result4(pick[0], sum[0]));
-    BUF(dst4).v[d + q0 + 1u] = TO_PLANE4(rule_result4(pick[1], sum[1]));
+    BUF(dst4).v[d + q0] = TO_PLANE4(rule_result4(pc.rule, pc.frames, pick[0], sum[0]));
+    BUF(dst4).v[d + q0 + 1u] = TO_PLANE4(rule_result4(pc.rule, pc.frames, pick[1], sum[1]));
     if (second_row) {
-        BUF(dst4).v[d + q2] = TO_PLANE4(rule_result4(pick[2], sum[2]));
-        BUF(dst4).v[d + q2 + 1u] = TO_PLANE4(rule_result4(pick[3], sum[3]));
+        BUF(dst4).v[d + q2] = TO_PLANE4(rule_result4(pc.rule, pc.frames, pick[2], sum[2]));
+        BUF(dst4).v[d + q2 + 1u] = TO_PLANE4(rule_result4(pc.rule, pc.frames, pick[3], sum[3]));
     }
 }

@@ -35,6 +35,7 @@ layout(push_constant, std430) uniform Push {
     uint quads;   // width % 4 == 0: rows are whole plane4 elements
     uint pixels;  // width * height
     uint write_image;  // quads only: also pack the planes into the read-back image (pack.comp's work)
+    uint bg_group;     // sensors sharing a background: sensor s's is the planes of s - s % bg_group in bg
 } pc;
 #define VKFUSE_WRITES_IMAGES
 #include "frames.glsl"
@@ -119,7 +120,7 @@ void main() {
     // together, so the barriers below stay uniform within every group.
     uint s = gl_WorkGroupID.z, g = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
     if (g >= pc.groups) return;
-    uint C = pc.channels, base = s * C * plane_size();
+    uint C = pc.channels, base = s * C * plane_size(), bg_base = (s - s % pc.bg_group) * C * plane_size();
     uint quads_per_row = uint(pc.width + 3) / 4u;
     uint item = g * WG + gl_LocalInvocationIndex;
     int x = int(item % quads_per_row) * 4;
@@ -153,8 +154,8 @@ void main() {
             }
             vec4 d = vec4(0.0);
             if (pc.has_bg != 0u) {
-                d = abs(r - bg_quad(base, 0u, x, y));
-                if (C == 3u) d += abs(gr - bg_quad(base, 1u, x, y)) + abs(b - bg_quad(base, 2u, x, y));
+                d = abs(r - bg_quad(bg_base, 0u, x, y));
+                if (C == 3u) d += abs(gr - bg_quad(bg_base, 1u, x, y)) + abs(b - bg_quad(bg_base, 2u, x, y));
             }
             for (int p = 0; p < 4; ++p) {
                 if (x + p >= pc.width) break;

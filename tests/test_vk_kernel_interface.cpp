@@ -15,10 +15,10 @@ TEST(KernelInterface, BoundVariantsDeclareTheirBuffersAndScalars) {
     const vk::KernelInterface pack = vk::reflect_kernel(vk::shader_spirv("pack"));
     EXPECT_EQ(pack.bindings, 4u);
     EXPECT_EQ(pack.push_bytes, 12u);
-    // metrics.comp: 7 buffers; 10 scalars.
+    // metrics.comp: 7 buffers; 11 scalars.
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16"));
     EXPECT_EQ(metrics.bindings, 7u);
-    EXPECT_EQ(metrics.push_bytes, 40u);
+    EXPECT_EQ(metrics.push_bytes, 44u);
 }
 
 TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
@@ -28,14 +28,14 @@ TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
     EXPECT_EQ(pack.push_bytes, 4u * 8u + 12u);
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16_addr"));
     EXPECT_EQ(metrics.bindings, 0u);
-    EXPECT_EQ(metrics.push_bytes, 7u * 8u + 40u);
+    EXPECT_EQ(metrics.push_bytes, 7u * 8u + 44u);
 }
 
 TEST(KernelInterface, SharedPushBlocksDeclareTheirBuffersToo) {
-    // rule_fuse.comp: 2 buffers, ten 4-byte scalars.
-    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).bindings, 2u);
-    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).push_bytes, 10u * 4u);
-    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse_addr")).push_bytes, 2u * 8u + 10u * 4u);
+    // rule_fuse.comp: 5 buffers, fourteen 4-byte scalars.
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).bindings, 5u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).push_bytes, 14u * 4u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse_addr")).push_bytes, 5u * 8u + 14u * 4u);
     // dwt_forward.comp's block comes from line.glsl: src, dst, scheme, regions;
     // thirteen scalars.
     const vk::KernelInterface line = vk::reflect_kernel(vk::shader_spirv("dwt_forward"));

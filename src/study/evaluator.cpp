@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "vk/cached_fusion.hpp"
 #include "vkfuse/core/reference.hpp"
 #include "vkfuse/vk/plan.hpp"
 
@@ -29,6 +30,9 @@ struct PlanPair {
 // Plans kept at once: a study walks combinations by size, so only the sizes
 // in use (and the greedy search's) need theirs.
 constexpr std::size_t kPlansKept = 16;
+// The largest coefficient cache a study makes (a QVGA study of 64 settings
+// and 10 objects takes about 0.8 GiB); beyond it, plans.
+constexpr std::uint64_t kMaxCacheBytes = std::uint64_t(2) << 30;
 
 }  // namespace
 
@@ -36,6 +40,29 @@ struct Evaluator::Impl {
     const StudyData& data;
     Context* context;
     std::vector<PlanPair> plans;  // most recently used last
+    // The coefficients of the last wavelet method scored (sources: the
+    // backgrounds, then each object; frames: the settings).
+    std::string cached_method;
+    std::unique_ptr<vk::CachedFusion> cached;
+
+    vk::CachedFusionShape cache_shape(const StudyMethod& method) const {
+        return {method.spec, data.height, data.width, 3, int(data.objects.size()) + 1, int(data.settings.size())};
+    }
+    bool uses_cache(const StudyMethod& method, std::size_t k) const {
+        return context && k > 1 && method.spec.method == Method::Wavelet &&
+               vk::CachedFusion::cache_bytes(cache_shape(method)) <= kMaxCacheBytes;
+    }
+    vk::CachedFusion& cache_for(const StudyMethod& method) {
+        if (cached && cached_method == method.name) return *cached;
+        cached.reset();  // one cache at a time: a method's is rebuilt in well under a second
+        std::vector<FrameView> images;
+        for (const Image& b : data.backgrounds) images.push_back(FrameView::of(b));
+        for (const auto& object : data.frames)
+            for (const Frame& f : object) images.push_back(f.view());
+        cached = std::make_unique<vk::CachedFusion>(*context, cache_shape(method), images);
+        cached_method = method.name;
+        return *cached;
+    }
 
     PlanConfig config(const StudyMethod& method, std::size_t k, int sensors) const {
         PlanConfig c;
@@ -108,11 +135,28 @@ struct Evaluator::Impl {
     }
 };
 
-Evaluator::Evaluator(const StudyData& data, Context* context) : impl_(new Impl{data, context, {}}) {}
+Evaluator::Evaluator(const StudyData& data, Context* context) : impl_(new Impl{data, context, {}, {}, {}}) {}
 Evaluator::~Evaluator() = default;
 
 std::vector<Metrics> Evaluator::score(const StudyMethod& method, std::span<const std::size_t> combination) {
+    if (impl_->uses_cache(method, combination.size())) {
+        const std::vector<std::size_t> one(combination.begin(), combination.end());
+        return impl_->cache_for(method).score(std::span(&one, 1)).front();
+    }
     return impl_->context ? impl_->on_device(method, combination) : impl_->on_cpu(method, combination);
+}
+
+std::size_t Evaluator::batch(const StudyMethod& method, std::size_t k) {
+    return impl_->uses_cache(method, k) ? impl_->cache_for(method).batch() : 1;
+}
+
+std::vector<std::vector<Metrics>> Evaluator::score_many(const StudyMethod& method,
+                                                        std::span<const std::vector<std::size_t>> combinations) {
+    if (!combinations.empty() && impl_->uses_cache(method, combinations.front().size()))
+        return impl_->cache_for(method).score(combinations);
+    std::vector<std::vector<Metrics>> out;
+    for (const auto& c : combinations) out.push_back(score(method, c));
+    return out;
 }
 
 }  // namespace vkfuse::study

@@ -13,9 +13,12 @@ namespace vkfuse::study {
 
 // For one method and one combination of settings: the metrics of every
 // object's fused image, its background being the same fusion of the
-// settings' backgrounds. On the device, the objects are the sensors of one
-// plan (one submit per combination) and the fused background is computed
-// once for all of them; plans are kept per (method, settings count).
+// settings' backgrounds. On the device, a wavelet method decomposes every
+// frame (the objects' and the backgrounds') once and fuses batches of
+// combinations from those coefficients (vk/cached_fusion.hpp); the other
+// methods, and a dataset too large for the cache, run a plan per
+// combination whose sensors are the objects, the fused background computed
+// once for all of them (plans kept per method and settings count).
 class Evaluator {
 public:
     Evaluator(const StudyData& data, Context* context);  // no context: the CPU reference
@@ -26,6 +29,13 @@ public:
     // combination: indices into data.settings, in fusion order. One setting
     // is no fusion: the frame is scored as it is, whatever the method.
     std::vector<Metrics> score(const StudyMethod& method, std::span<const std::size_t> combination);
+    // score() of each combination (all of one size, each in fusion order):
+    // the way to fuse many, batched where the method allows.
+    std::vector<std::vector<Metrics>> score_many(const StudyMethod& method,
+                                                 std::span<const std::vector<std::size_t>> combinations);
+    // How many combinations of size k score_many fuses at once for method:
+    // a call with a multiple of it wastes no fusion.
+    std::size_t batch(const StudyMethod& method, std::size_t k);
 
     struct Impl;
 

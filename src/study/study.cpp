@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "core/method_table.hpp"
 #include "study/evaluator.hpp"
@@ -124,10 +125,6 @@ private:
     void progress() {
         if (options_.progress) options_.progress(done_, planned_);
     }
-    void step() {
-        ++done_;
-        progress();
-    }
 
     void score_singles(StudyResult& r) {
         std::vector<std::vector<Metrics>> metrics;
@@ -150,34 +147,64 @@ private:
         for (const auto& m : metrics) table_.singles.push_back(gains_of(m, reference_));
     }
 
+    // Method by method, the combinations of each size in batches: a batch is
+    // what one call to the evaluator fuses, and one step of progress each.
     void score_table() {
-        const std::size_t M = methods_.size(), O = data_.objects.size();
-        table_.gains.assign(table_.combinations.size() * M * O, Gains{});
-        table_.scored.assign(table_.combinations.size() * M, false);
-        for (std::size_t c = 0; c < table_.combinations.size(); ++c)
-            for (std::size_t m = 0; m < M; ++m) {
-                if (!takes(methods_[m], table_.combinations[c].size())) continue;
-                const std::vector<std::size_t> order = fusion_order(methods_[m], data_.settings, table_.combinations[c]);
-                const std::vector<Gains> g = gains_of(evaluator_.score(methods_[m], order), reference_);
-                std::copy(g.begin(), g.end(), table_.gains.begin() + std::ptrdiff_t((c * M + m) * O));
-                table_.scored[c * M + m] = true;
-                fusions_ += O;
-                ++done_;
-                progress();
+        const std::size_t M = methods_.size(), O = data_.objects.size(), C = table_.combinations.size();
+        table_.gains.assign(C * M * O, Gains{});
+        table_.scored.assign(C * M, false);
+        constexpr std::size_t kPerStep = 100;  // combinations per step, about
+        for (std::size_t m = 0; m < M; ++m)
+            for (std::size_t first = 0; first < C;) {
+                const std::size_t k = table_.combinations[first].size();
+                const std::size_t batch = takes(methods_[m], k) ? evaluator_.batch(methods_[m], k) : 1;
+                const std::size_t step = std::max<std::size_t>(1, kPerStep / batch) * batch;
+                std::size_t end = first;
+                while (end < C && end - first < step && table_.combinations[end].size() == k) ++end;
+                if (takes(methods_[m], k)) {
+                    std::vector<std::vector<std::size_t>> orders;
+                    for (std::size_t c = first; c < end; ++c)
+                        orders.push_back(fusion_order(methods_[m], data_.settings, table_.combinations[c]));
+                    const auto scores = evaluator_.score_many(methods_[m], orders);
+                    for (std::size_t c = first; c < end; ++c) {
+                        const std::vector<Gains> g = gains_of(scores[c - first], reference_);
+                        std::copy(g.begin(), g.end(), table_.gains.begin() + std::ptrdiff_t((c * M + m) * O));
+                        table_.scored[c * M + m] = true;
+                        fusions_ += O;
+                        ++done_;
+                    }
+                    progress();
+                }
+                first = end;
             }
     }
 
-    // The ranking method's mean gains for a set of settings (ascending):
-    // from the table, else scored now and kept. Counted as one step of
-    // progress either way, so that the plan made up front holds.
-    Gains mean_for(const std::vector<std::size_t>& settings) {
+    // The ranking method's mean gains for a set of settings (ascending): from
+    // the table or scored before, else nullopt.
+    std::optional<Gains> known(const std::vector<std::size_t>& settings) const {
         if (settings.size() == 1) return mean_gain(table_.singles[settings[0]].data(), table_.objects);
         if (auto it = index_.find(settings); it != index_.end())
             if (const Gains* g = table_.at(it->second, ranking_)) return mean_gain(g, table_.objects);
         if (auto it = extra_.find(settings); it != extra_.end()) return it->second;
-        const std::vector<Gains> g = gains_of(evaluator_.score(methods_[ranking_], settings), reference_);
-        fusions_ += table_.objects;
-        return extra_[settings] = mean_gain(g.data(), table_.objects);
+        return std::nullopt;
+    }
+    // The same for several sets, those not known scored now in one batch and
+    // kept. Each set counts as one step of progress either way, so that the
+    // plan made up front holds.
+    std::vector<Gains> means_for(const std::vector<std::vector<std::size_t>>& sets) {
+        std::vector<std::vector<std::size_t>> unknown;
+        for (const auto& s : sets)
+            if (!known(s)) unknown.push_back(s);
+        if (!unknown.empty()) {
+            const auto scores = evaluator_.score_many(methods_[ranking_], unknown);
+            for (std::size_t i = 0; i < unknown.size(); ++i) {
+                extra_[unknown[i]] = mean_gain(gains_of(scores[i], reference_).data(), table_.objects);
+                fusions_ += table_.objects;
+            }
+        }
+        std::vector<Gains> out;
+        for (const auto& s : sets) out.push_back(*known(s));
+        return out;
     }
 
     void greedy(StudyResult& r) {
@@ -188,19 +215,29 @@ private:
             const Metric metric = kAllMetrics[i];
             std::vector<std::size_t> sequence;
             for (std::size_t length = 1; length <= longest; ++length) {
-                std::size_t pick = n;
-                double value = -1;
+                std::vector<std::size_t> candidates;
+                std::vector<std::vector<std::size_t>> sets;
                 for (std::size_t s = 0; s < n; ++s) {
                     if (std::find(sequence.begin(), sequence.end(), s) != sequence.end()) continue;
                     std::vector<std::size_t> set = sequence;
                     set.push_back(s);
                     std::sort(set.begin(), set.end());
-                    const double v = mean_for(set).of(metric);
-                    if (length > 1) step();
+                    candidates.push_back(s);
+                    sets.push_back(std::move(set));
+                }
+                const std::vector<Gains> means = means_for(sets);
+                std::size_t pick = n;
+                double value = -1;
+                for (std::size_t c = 0; c < candidates.size(); ++c) {
+                    const double v = means[c].of(metric);
                     if (v > value) {
                         value = v;
-                        pick = s;
+                        pick = candidates[c];
                     }
+                }
+                if (length > 1) {
+                    done_ += candidates.size();
+                    progress();
                 }
                 sequence.push_back(pick);
                 r.greedy[i].push_back({length, sequence, value});
@@ -210,12 +247,14 @@ private:
 
     void pair_with_static(StudyResult& r) {
         const std::size_t s0 = data_.static_setting;
-        for (std::size_t s = 0; s < data_.settings.size(); ++s) {
-            if (s == s0) continue;
-            const std::vector<std::size_t> pair = {std::min(s, s0), std::max(s, s0)};
-            r.pairing.push_back({{s}, mean_for(pair)});
-            step();
-        }
+        std::vector<std::vector<std::size_t>> pairs;
+        for (std::size_t s = 0; s < data_.settings.size(); ++s)
+            if (s != s0) pairs.push_back({std::min(s, s0), std::max(s, s0)});
+        const std::vector<Gains> means = means_for(pairs);
+        for (std::size_t p = 0, s = 0; s < data_.settings.size(); ++s)
+            if (s != s0) r.pairing.push_back({{s}, means[p++]});
+        done_ += pairs.size();
+        progress();
     }
 
     const StudyOptions& options_;

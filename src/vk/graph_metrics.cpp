@@ -1,6 +1,9 @@
 // Sharpness, RMS contrast and background difference in one pass
 // (shaders/metrics.comp): per workgroup a partial of 8 floats written into the
 // read-back buffer, finished on the host in double by Plan::metrics.
+#include <algorithm>
+#include <cmath>
+
 #include "vk/plan_impl.hpp"
 
 namespace vkfuse::vk {
@@ -17,7 +20,7 @@ std::uint32_t metric_groups(const PlanConfig& cfg) {
 bool metrics_write_image(const PlanConfig& cfg) { return !cfg.metrics.empty() && cfg.width % 4 == 0; }
 
 void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
-                    std::optional<DeviceSpan> image) {
+                    std::optional<DeviceSpan> image, std::uint32_t background_group) {
     const std::uint32_t wgs = metric_groups(g.cfg);
     const Grid grid = grid_1d(wgs, 1);
     const DeviceSpan img = g.span(fused), bg = background ? g.span(background) : img;
@@ -33,9 +36,34 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
                        .u32(g.cfg.metrics.has(Metric::Contrast))
                        .u32(g.cfg.width % 4 == 0)
                        .u32(std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height))
-                       .u32(image.has_value()),
+                       .u32(image.has_value())
+                       .u32(background_group),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
     g.rec.mark("metrics");
+}
+
+Metrics finish_metrics(std::span<const float> partials, const PlanConfig& cfg, int exponent) {
+    // The workgroups' partials (shaders/metrics.comp) in double: the sums
+    // added, the moments of the luma deviations combined pairwise (Chan).
+    double sharpness = 0, background_diff = 0, count = 0, mean = 0, m2 = 0;
+    for (std::size_t g = 0; g + kMetricPartialFloats <= partials.size(); g += kMetricPartialFloats) {
+        const float* p = partials.data() + g;
+        sharpness += p[0];
+        background_diff += p[1];
+        const double n = p[2];
+        if (n == 0) continue;
+        const double total = count + n, delta = double(p[3]) - mean;
+        mean += delta * n / total;
+        m2 += double(p[4]) + delta * delta * count * n / total;
+        count = total;
+    }
+    const double n = double(cfg.height) * cfg.width;
+    Metrics m;
+    const MetricSet& which = cfg.metrics;
+    m.sharpness = which.has(Metric::Sharpness) ? std::ldexp(sharpness / n, exponent) : std::nan("");
+    m.contrast = which.has(Metric::Contrast) ? std::ldexp(std::sqrt(std::max(0.0, m2) / n), exponent) : std::nan("");
+    if (which.has(Metric::BackgroundDiff)) m.background_diff = std::ldexp(background_diff / (n * cfg.channels), exponent);
+    return m;
 }
 
 }  // namespace vkfuse::vk

@@ -10,7 +10,9 @@ void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
     if (r.src.row_stride != r.dst.row_stride || r.src.plane_stride != r.dst.plane_stride)
         throw Error(ErrorKind::Device, "internal: rule_fuse takes one set of strides for its source and result");
     const FusionSpec& spec = g.cfg.fusion;
-    g.rec.dispatch("rule_fuse", {g.span(r.src.addr), g.span(r.dst.addr)},
+    const DeviceSpan src = g.span(r.src.addr), dst = g.span(r.dst.addr);
+    const bool quads = r.width % 4 == 0 && r.src.row_stride % 4 == 0 && r.src.plane_stride % 4 == 0;
+    g.rec.dispatch("rule_fuse", {src, dst, r.table ? *r.table : src, src, dst},
                    PushConstants()
                        .i32(r.width)
                        .i32(r.height)
@@ -21,8 +23,12 @@ void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
                        .u32(std::uint32_t(spec.base_rule))
                        .u32(std::uint32_t(spec.detail_rule))
                        .i32(r.split_w)
-                       .i32(r.split_h),
-                   groups(std::uint32_t(r.width), 16), groups(std::uint32_t(r.height), 16), g.planes_out());
+                       .i32(r.split_h)
+                       .u32(r.table ? 1 : 0)
+                       .i32(r.skip_w)
+                       .i32(r.skip_h)
+                       .u32(quads),
+                   groups(std::uint32_t(quads ? r.width / 4 : r.width), 16), groups(std::uint32_t(r.height), 16), g.planes_out());
 }
 
 }  // namespace vkfuse::vk

@@ -119,6 +119,21 @@ constexpr int kConvBlock = 4;
 // Pixels of a row per invocation of sparse_compose (SPAN there).
 constexpr std::uint32_t kComposeSpan = 32;
 
+std::vector<LevelShape> level_shapes(const PlanConfig& cfg) {
+    const bool periodization = cfg.fusion.mode == WaveletMode::Periodization;
+    std::vector<LevelShape> shapes;
+    int h = cfg.height, w = cfg.width;
+    for (int l = 0; l < cfg.fusion.effective_levels(); ++l) {
+        LevelShape s{h, w, (h + 1) / 2, (w + 1) / 2, 0, 0};
+        s.bh = periodization ? 2 * s.ch : h;
+        s.bw = periodization ? 2 * s.cw : w;
+        shapes.push_back(s);
+        h = s.ch;
+        w = s.cw;
+    }
+    return shapes;
+}
+
 class WaveletGraph {
 public:
     WaveletGraph(GraphBuilder& g) : g_(g), spec_(g.cfg.fusion) {
@@ -127,15 +142,7 @@ public:
             taps_ = filter_specialization(spec_.wavelet);
         else
             scheme_ = g.constants(lifting_constants(spec_.wavelet));
-        int h = g.cfg.height, w = g.cfg.width;
-        for (int l = 0; l < spec_.effective_levels(); ++l) {
-            LevelShape s{h, w, (h + 1) / 2, (w + 1) / 2, 0, 0};
-            s.bh = periodization_ ? 2 * s.ch : h;
-            s.bw = periodization_ ? 2 * s.cw : w;
-            shapes_.push_back(s);
-            h = s.ch;
-            w = s.cw;
-        }
+        shapes_ = level_shapes(g.cfg);
     }
 
     VkDeviceAddress record(FrameSource& input) {
@@ -148,27 +155,86 @@ public:
             const auto& s = shapes_[std::size_t(l)];
             PlaneView t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
             PlaneView d{g_.planes(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
-            const LineSpec rows{s.w, s.cw, high(s.w, s.cw), s.h, true};
-            if (l == 0 && rows_from_frames(rows)) {
-                forward_from_frames(input, t, rows);
-            } else {
-                if (l == 0) a = {input.planes(), g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
-                forward(a, t, rows, g_.planes_in(), l);
-            }
+            rows(input, a, t, l);
             PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             if (periodization_) {
                 fuse_columns(t, d, f, s, l, l == L - 1);
             } else {
-                forward(t, d, {s.h, s.ch, high(s.h, s.ch), s.bw, false}, g_.planes_in(), -1);
+                columns(t, d, s);
                 fuse(d, f, s, l == L - 1);
             }
             fused.push_back(f);
             a = {d.addr, s.bw, d.plane_stride};
         }
         g_.rec.mark("dwt_and_fuse");
+        return invert(fused);
+    }
+
+    // Every frame's coefficient blocks, level l's into levels[l] (planes_in()
+    // blocks of that level's shape), for fuse_cached to fuse in any combination.
+    void decompose(FrameSource& input, const std::vector<PlaneView>& levels) {
+        const auto& top = shapes_.front();
+        const VkDeviceAddress scratch = g_.planes(std::uint64_t(g_.planes_in()) * top.h * top.bw);
+        PlaneView a;
+        for (std::size_t l = 0; l < shapes_.size(); ++l) {
+            const auto& s = shapes_[l];
+            const PlaneView t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
+            rows(input, a, t, int(l));
+            columns(t, levels[l], s);
+            a = {levels[l].addr, s.bw, levels[l].plane_stride};
+        }
+        g_.rec.mark("dwt");
+    }
+
+    // The plan's sensors fused from decompose()'s blocks: sensor s's frame k
+    // is block table[s*K + k] of every level.
+    VkDeviceAddress fuse_cached(const std::vector<PlaneView>& levels, DeviceSpan table) {
+        std::vector<PlaneView> fused;
+        for (std::size_t l = 0; l < shapes_.size(); ++l) {
+            const auto& s = shapes_[l];
+            const bool deepest = l + 1 == shapes_.size();
+            const std::uint32_t stride = levels[l].plane_stride;  // rule_fuse: the cache's
+            const PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * stride), s.bw, stride};
+            // Above the deepest level the approximation corner is the inverse's to write.
+            record_rule_fuse(g_, {levels[l], f, s.bw, s.bh, deepest ? s.cw : 0, deepest ? s.ch : 0, table,
+                                  deepest ? 0 : s.cw, deepest ? 0 : s.ch});
+            fused.push_back(f);
+        }
+        g_.rec.mark("fuse");
+        return invert(fused);
+    }
+
+private:
+    GraphBuilder& g_;
+    const FusionSpec& spec_;
+    bool periodization_ = true;
+    VkDeviceAddress scheme_ = 0;  // symmetric mode: the lifting scheme
+    std::vector<std::uint32_t> taps_;
+    std::vector<LevelShape> shapes_;
+
+    int high(int n, int half) const { return periodization_ ? half : n - half; }
+
+    // Level l's row pass into t: from the frames as uploaded (level 0, where
+    // they suit dwt_rows_frames), from their unpacked planes, or from `a`,
+    // the approximation the level above left.
+    void rows(FrameSource& input, PlaneView& a, const PlaneView& t, int l) {
+        const auto& s = shapes_[std::size_t(l)];
+        const LineSpec ls{s.w, s.cw, high(s.w, s.cw), s.h, true};
+        if (l == 0 && rows_from_frames(ls)) return forward_from_frames(input, t, ls);
+        if (l == 0) a = {input.planes(), g_.cfg.width, std::uint32_t(g_.cfg.width * g_.cfg.height)};
+        forward(a, t, ls, g_.planes_in(), l);
+    }
+    // A level's column pass over every frame's rows, whole blocks into d.
+    void columns(const PlaneView& t, const PlaneView& d, const LevelShape& s) {
+        forward(t, d, {s.h, s.ch, high(s.h, s.ch), s.bw, false}, g_.planes_in(), -1);
+    }
+
+    // The inverse from the coarsest fused level down; returns the fused planes.
+    VkDeviceAddress invert(std::vector<PlaneView>& fused) {
+        const auto& top = shapes_.front();
         const VkDeviceAddress out_addr = g_.planes(std::uint64_t(g_.planes_out()) * g_.cfg.width * g_.cfg.height);
         const VkDeviceAddress inv_scratch = g_.planes(std::uint64_t(g_.planes_out()) * top.h * top.bw);
-        for (int l = L - 1; l >= 0; --l) {
+        for (int l = int(shapes_.size()) - 1; l >= 0; --l) {
             const auto& s = shapes_[std::size_t(l)];
             PlaneView u{inv_scratch, s.bw, std::uint32_t(s.h * s.bw)};
             PlaneView dst = l > 0 ? fused[std::size_t(l) - 1]
@@ -181,16 +247,6 @@ public:
         if (g_.sparse) compose(out_addr);
         return out_addr;
     }
-
-private:
-    GraphBuilder& g_;
-    const FusionSpec& spec_;
-    bool periodization_ = true;
-    VkDeviceAddress scheme_ = 0;  // symmetric mode: the lifting scheme
-    std::vector<std::uint32_t> taps_;
-    std::vector<LevelShape> shapes_;
-
-    int high(int n, int half) const { return periodization_ ? half : n - half; }
 
     // A region-aware dispatch's push value and records (shaders/sparse.glsl):
     // none (0, any buffer bound in its place) unless the plan fuses sparsely.
@@ -279,7 +335,7 @@ private:
                         std::uint32_t(g_.cfg.sensors * g_.cfg.frames), taps_);
     }
 
-    // A row pass at `level` (region-aware), or a lifting column pass (level -1).
+    // A row pass at `level` (region-aware), or a column pass (level -1).
     void forward(const PlaneView& src, const PlaneView& dst, const LineSpec& ls, std::uint32_t planes, int level) {
         // Rows of whole quads: eight pairs per invocation, plane4 loads and stores.
         const bool rows4 = periodization_ && ls.along_rows && ls.half_len % 8 == 0 && src.row_stride % 4 == 0 &&
@@ -344,5 +400,19 @@ private:
 }  // namespace
 
 VkDeviceAddress record_wavelet(GraphBuilder& g, FrameSource& input) { return WaveletGraph(g).record(input); }
+
+std::vector<WaveletBlock> wavelet_blocks(const PlanConfig& cfg) {
+    std::vector<WaveletBlock> out;
+    for (const LevelShape& s : level_shapes(cfg)) out.push_back({s.bh, s.bw});
+    return out;
+}
+
+void record_wavelet_decompose(GraphBuilder& g, FrameSource& input, const std::vector<PlaneView>& levels) {
+    WaveletGraph(g).decompose(input, levels);
+}
+
+VkDeviceAddress record_wavelet_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table) {
+    return WaveletGraph(g).fuse_cached(levels, table);
+}
 
 }  // namespace vkfuse::vk

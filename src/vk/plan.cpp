@@ -489,31 +489,10 @@ Metrics Plan::metrics(int sensor) const {
     const float* partials = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
                                                            im.partials_offset) +
                             im.result_slot(sensor) * n_floats;
-    // Checked before use: std::max(0.0, NaN) below would make a NaN sum a
+    // Checked before use: finish_metrics's std::max(0.0, NaN) would make a NaN sum a
     // contrast of 0.
     check_device_results(im.cfg, sensor, std::span(partials, n_floats), "a metric sum");
-    // The workgroups' partials (shaders/metrics.comp) in double: the sums
-    // added, the moments of the luma deviations combined pairwise (Chan).
-    double sharpness = 0, background_diff = 0, count = 0, mean = 0, m2 = 0;
-    for (std::size_t g = 0; g < groups; ++g) {
-        const float* p = partials + g * vk::kMetricPartialFloats;
-        sharpness += p[0];
-        background_diff += p[1];
-        const double n = p[2];
-        if (n == 0) continue;
-        const double total = count + n, delta = double(p[3]) - mean;
-        mean += delta * n / total;
-        m2 += double(p[4]) + delta * delta * count * n / total;
-        count = total;
-    }
-    const double n = double(im.cfg.height) * im.cfg.width;
-    const int e = im.exponent[std::size_t(sensor)];  // every metric scales with the frames
-    Metrics m;
-    const MetricSet& which = im.cfg.metrics;
-    m.sharpness = which.has(Metric::Sharpness) ? std::ldexp(sharpness / n, e) : std::nan("");
-    m.contrast = which.has(Metric::Contrast) ? std::ldexp(std::sqrt(std::max(0.0, m2) / n), e) : std::nan("");
-    if (which.has(Metric::BackgroundDiff)) m.background_diff = std::ldexp(background_diff / (n * im.cfg.channels), e);
-    return m;
+    return vk::finish_metrics(std::span(partials, n_floats), im.cfg, im.exponent[std::size_t(sensor)]);
 }
 
 std::uint64_t Plan::submits() const { return impl_->submits; }

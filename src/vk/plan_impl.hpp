@@ -86,6 +86,7 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
 VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& input);
 VkDeviceAddress record_wavelet(GraphBuilder& g, FrameSource& input);
 
+
 // A set of planes as a strided 2-D view: plane p's sample (y, x) is
 // addr[p * plane_stride + y * row_stride + x], in plane samples. What the
 // graph builders hand each other and their kernels.
@@ -98,13 +99,33 @@ struct PlaneView {
 // A width x height region of S*K*C source planes (plane (s*K + k)*C + c) and
 // of the S*C fused planes (s*C + c), both with the same strides. Inside its
 // top-left split_w x split_h corner the base rule applies, the detail rule
-// elsewhere.
+// elsewhere. With a table (S*K uint32), fused sensor s's frame k is source
+// frame table[s*K + k] (planes table[s*K + k]*C + c) of any number of them.
+// The top-left skip_w x skip_h corner is left unwritten.
 struct RuleFuseRegion {
     PlaneView src, dst;
     int width = 0, height = 0;
     int split_w = 0, split_h = 0;
+    std::optional<DeviceSpan> table = std::nullopt;
+    int skip_w = 0, skip_h = 0;
 };
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& region);
+
+// The wavelet's coefficients decomposed once and fused in many combinations
+// (vk/cached_fusion.hpp). Level l's coefficients of a frame form one block
+// of wavelet_blocks(cfg)[l] (height x width samples, its approximation
+// top-left); levels[l] views the blocks of every frame, planes (f*C + c),
+// at a plane stride of at least the block's samples.
+struct WaveletBlock {
+    int height = 0, width = 0;
+};
+std::vector<WaveletBlock> wavelet_blocks(const PlanConfig& cfg);
+// Every frame of the input, decomposed into `levels` (S*K*C blocks each).
+void record_wavelet_decompose(GraphBuilder& g, FrameSource& input, const std::vector<PlaneView>& levels);
+// The plan's S sensors fused from `levels`, sensor s's frame k being frame
+// table[s*K + k] there (S*K uint32); returns the fused planes as
+// record_wavelet does.
+VkDeviceAddress record_wavelet_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table);
 
 // Workgroups of the metric pass per sensor: each writes kMetricPartialFloats
 // floats (shaders/metrics.comp).
@@ -115,8 +136,13 @@ std::uint32_t metric_groups(const PlanConfig& cfg);
 // partials, from float s * metric_groups * kMetricPartialFloats on.
 // `image`, given only where metrics_write_image(), receives the fused image
 // (HWC float32) from the same pass.
+// Sensor s's background is the one of sensor s - s % background_group in
+// `background` (1: its own; a cached fusion's group shares its first's).
 void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
-                    std::optional<DeviceSpan> image = std::nullopt);
+                    std::optional<DeviceSpan> image = std::nullopt, std::uint32_t background_group = 1);
+// One sensor's metrics from its metric_groups partials, summed in double;
+// each metric times 2^exponent (the scale its frames went to the device at).
+Metrics finish_metrics(std::span<const float> partials, const PlanConfig& cfg, int exponent);
 // Whether the metric pass can write the read-back image too (rows of whole quads).
 bool metrics_write_image(const PlanConfig& cfg);
 

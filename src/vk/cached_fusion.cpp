@@ -1,0 +1,200 @@
+#include "vk/cached_fusion.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "vk/context_impl.hpp"
+#include "vk/magnitude.hpp"
+#include "vk/plan_impl.hpp"
+#include "vkfuse/core/error.hpp"
+
+namespace vkfuse::vk {
+namespace {
+
+// Fused sensors per cycle: enough that the small deep levels' dispatches
+// fill the device, few enough that a batch's planes stay modest (40 sensors
+// of QVGA RGB: about 90 MiB of intermediates).
+constexpr int kSensorsPerCycle = 40;
+// Recorded cycles kept: a study walks the combination sizes in turn; its
+// greedy search asks for one size per step.
+constexpr std::size_t kGraphsKept = 4;
+
+PlanConfig base_config(const CachedFusionShape& s) {
+    PlanConfig c;
+    c.fusion = s.fusion;
+    c.height = s.height;
+    c.width = s.width;
+    c.channels = s.channels;
+    c.want_fused = false;
+    c.metrics = MetricSet::all();
+    return c;
+}
+
+}  // namespace
+
+// The coefficient cache: per level, every source's every frame's block.
+struct CachedFusion::Cache {
+    std::vector<Buffer> levels;
+    std::vector<PlaneView> views;  // over `levels`, planes (source * frames + f) * C + c
+};
+
+// One recorded cycle for combinations of k frames: `batch` combinations of
+// every source at once.
+struct CachedFusion::Graph {
+    std::size_t k = 0;
+    int batch = 0;
+    PlanConfig cfg;  // sensors: batch x sources fused, frames: k
+    Buffer table;    // host-written: sensor j's k frames in the cache
+    Buffer readback;
+    std::vector<Buffer> buffers;
+    std::optional<DescriptorSets> sets;
+    std::optional<CommandSlot> slot;  // last: released (and waited out) first
+};
+
+std::uint64_t CachedFusion::cache_bytes(const CachedFusionShape& s) {
+    std::uint64_t samples = 0;
+    for (const WaveletBlock& b : wavelet_blocks(base_config(s))) samples += (std::uint64_t(b.height) * b.width + 63) / 64 * 64;
+    return samples * std::uint64_t(s.sources) * std::uint64_t(s.frames) * std::uint64_t(s.channels) * 4;
+}
+
+CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std::span<const FrameView> images)
+    : ctx_(ContextAccess::of(context)), shape_(shape), cache_(std::make_unique<Cache>()) {
+    if (shape.fusion.method != Method::Wavelet)
+        throw Error(ErrorKind::InvalidArgument, "cached fusion: only the wavelet method fuses from coefficients");
+    if (shape.sources < 2 || shape.frames < 2)
+        throw Error(ErrorKind::InvalidArgument, "cached fusion: needs a background and a source, and two frames each");
+    if (images.size() != std::size_t(shape.sources) * std::size_t(shape.frames))
+        throw Error(ErrorKind::InvalidArgument, "cached fusion: got " + std::to_string(images.size()) +
+                                                    " images for " + std::to_string(shape.sources) + " sources x " +
+                                                    std::to_string(shape.frames) + " frames");
+    const PlanConfig base = base_config(shape);
+    validate(shape.fusion, shape.height, shape.width, shape.channels, 2);
+    // The cache's first level and a cycle's planes are the largest buffers.
+    const std::uint64_t top = std::uint64_t(wavelet_blocks(base).front().height) * wavelet_blocks(base).front().width *
+                              std::uint64_t(shape.channels) * 4;
+    const std::uint64_t largest = std::max(top * std::uint64_t(shape.sources) * std::uint64_t(shape.frames),
+                                           top * std::uint64_t(kSensorsPerCycle + shape.sources));
+    addressed_ = ctx_.device_addresses_only || largest > ctx_.properties.limits.maxStorageBufferRange;
+    const std::uint32_t planes_per_frame = std::uint32_t(shape.channels);
+    for (const WaveletBlock& b : wavelet_blocks(base)) {
+        // Planes start 256 bytes apart at least: each source's part of the
+        // cache is then bindable at any device's storage-buffer offset alignment.
+        const std::uint32_t block = (std::uint32_t(b.height * b.width) + 63u) / 64u * 64u;
+        cache_->levels.emplace_back(ctx_, std::uint64_t(block) * shape.sources * shape.frames * planes_per_frame * 4,
+                                    MemoryUse::Device);
+        cache_->views.push_back({cache_->levels.back().address(), b.width, block});
+    }
+    // Each source's frames decomposed in one submit, into its part of the cache.
+    for (int source = 0; source < shape.sources; ++source) {
+        PlanConfig cfg = base;
+        cfg.sensors = 1;
+        cfg.frames = shape.frames;
+        cfg.metrics = {};
+        const FrameView* first = images.data() + std::size_t(source) * std::size_t(shape.frames);
+        cfg.input = first->type;
+        std::uint64_t bytes = 0;
+        for (int f = 0; f < shape.frames; ++f) {
+            const FrameView& v = first[f];
+            if (v.height != shape.height || v.width != shape.width || v.channels != shape.channels || v.type != cfg.input)
+                throw Error(ErrorKind::InvalidArgument, "cached fusion: frame " + std::to_string(f) + " of source " +
+                                                            std::to_string(source) + " differs in shape or type");
+            bytes += v.bytes();
+        }
+        Buffer upload(ctx_, (bytes + 3) / 4 * 4, MemoryUse::Upload);
+        auto* dst = static_cast<std::uint8_t*>(upload.mapped());
+        for (int f = 0; f < shape.frames; ++f) {
+            std::memcpy(dst, first[f].data, first[f].bytes());
+            dst += first[f].bytes();
+        }
+        std::vector<PlaneView> levels = cache_->views;
+        for (PlaneView& v : levels)
+            v.addr += std::uint64_t(source) * shape.frames * planes_per_frame * v.plane_stride * 4;
+        std::vector<Buffer> buffers;
+        DescriptorSets sets(ctx_);
+        CommandSlot slot(ctx_, 0);
+        Recorder rec(ctx_, slot.recording_target(), slot.queries(), "", sets, addressed_);
+        std::vector<const Buffer*> fixed{&upload};
+        for (const Buffer& b : cache_->levels) fixed.push_back(&b);
+        GraphBuilder g{ctx_, cfg, rec, buffers, 0, fixed};
+        FrameSource input(g, upload.span());
+        record_wavelet_decompose(g, input, levels);
+        rec.finish();
+        slot.submit_and_wait();
+    }
+}
+
+CachedFusion::~CachedFusion() = default;
+
+std::size_t CachedFusion::batch() const { return std::size_t(std::max(1, kSensorsPerCycle / shape_.sources)); }
+
+CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
+    auto it = std::find_if(graphs_.begin(), graphs_.end(), [&](const Graph& g) { return g.k == k; });
+    if (it != graphs_.end()) {
+        graphs_.splice(graphs_.end(), graphs_, it);
+        return graphs_.back();
+    }
+    if (graphs_.size() == kGraphsKept) graphs_.pop_front();
+    Graph& gr = graphs_.emplace_back();
+    gr.k = k;
+    gr.batch = int(batch());
+    gr.cfg = base_config(shape_);
+    gr.cfg.sensors = gr.batch * shape_.sources;
+    gr.cfg.frames = int(k);
+    gr.table = Buffer(ctx_, std::uint64_t(gr.cfg.sensors) * k * 4, MemoryUse::Upload);
+    gr.readback = Buffer(ctx_, std::uint64_t(gr.cfg.sensors) * metric_groups(gr.cfg) * kMetricPartialFloats * 4,
+                         MemoryUse::Readback);
+    gr.sets.emplace(ctx_);
+    gr.slot.emplace(ctx_, 0);
+    Recorder rec(ctx_, gr.slot->recording_target(), gr.slot->queries(), "", *gr.sets, addressed_);
+    std::vector<const Buffer*> fixed{&gr.table, &gr.readback};
+    for (const Buffer& b : cache_->levels) fixed.push_back(&b);
+    GraphBuilder g{ctx_, gr.cfg, rec, gr.buffers, 0, fixed};
+    const VkDeviceAddress fused = record_wavelet_cached(g, cache_->views, gr.table.span());
+    record_metrics(g, fused, fused, gr.readback.span(), std::nullopt, std::uint32_t(shape_.sources));
+    rec.finish();
+    return gr;
+}
+
+std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vector<std::size_t>> combinations) {
+    std::vector<std::vector<Metrics>> out;
+    if (combinations.empty()) return out;
+    const std::size_t k = combinations.front().size();
+    for (const auto& c : combinations) {
+        if (c.size() != k || k < 2)
+            throw Error(ErrorKind::InvalidArgument, "cached fusion: combinations of one size, two frames or more");
+        for (std::size_t i = 0; i < k; ++i)
+            if (c[i] >= std::size_t(shape_.frames) || std::count(c.begin(), c.end(), c[i]) != 1)
+                throw Error(ErrorKind::InvalidArgument, "cached fusion: a combination names a frame twice or past " +
+                                                            std::to_string(shape_.frames));
+    }
+    Graph& gr = graph_for(k);
+    const std::size_t S = std::size_t(shape_.sources), full = batch();
+    const std::size_t n_floats = metric_groups(gr.cfg) * kMetricPartialFloats;
+    for (std::size_t first = 0; first < combinations.size(); first += full) {
+        const std::size_t count = std::min(full, combinations.size() - first);
+        // A short last batch repeats its last combination in the slots left.
+        auto* table = static_cast<std::uint32_t*>(gr.table.mapped());
+        for (std::size_t b = 0; b < full; ++b) {
+            const auto& c = combinations[first + std::min(b, count - 1)];
+            for (std::size_t s = 0; s < S; ++s)
+                for (std::size_t i = 0; i < k; ++i)
+                    table[(b * S + s) * k + i] = std::uint32_t(s * std::size_t(shape_.frames) + c[i]);
+        }
+        gr.slot->submit_and_wait();
+        const float* partials = static_cast<const float*>(gr.readback.mapped());
+        for (std::size_t b = 0; b < count; ++b) {
+            std::vector<Metrics> row;
+            for (std::size_t s = 1; s < S; ++s) {
+                const std::span<const float> p(partials + (b * S + s) * n_floats, n_floats);
+                if (first_non_finite(p.data(), p.size()) != p.size())
+                    throw Error(ErrorKind::Numeric, "cached fusion: a metric sum overflowed float32 on the device");
+                row.push_back(finish_metrics(p, gr.cfg, 0));
+            }
+            out.push_back(std::move(row));
+        }
+    }
+    return out;
+}
+
+}  // namespace vkfuse::vk

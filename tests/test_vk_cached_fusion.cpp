@@ -1,0 +1,161 @@
+// vk::CachedFusion (the study's wavelet path): fusing combinations from
+// coefficients decomposed once gives, for every source, the metrics a plan
+// gives when it fuses the same frames and takes the same fusion of the
+// background frames as its background; bad combinations get one line each.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "expect_error.hpp"
+#include "test_support.hpp"
+#include "vk/cached_fusion.hpp"
+#include "vk_fixture.hpp"
+
+namespace vkfuse::test {
+namespace {
+
+constexpr int kFrames = 5;
+
+struct Sources {
+    int height, width;
+    std::vector<Image> background;                   // float32, one per frame
+    std::vector<std::vector<std::uint8_t>> objects;  // 8-bit, object-major
+    int object_count;
+
+    Sources(int h, int w, int objects_n) : height(h), width(w), object_count(objects_n) {
+        for (int f = 0; f < kFrames; ++f) background.push_back(convert<float>(random_image(h, w, 3, 100u + f)));
+        for (int o = 0; o < objects_n; ++o)
+            for (int f = 0; f < kFrames; ++f) {
+                const ImageD img = random_image(h, w, 3, 200u + 17u * o + f);
+                std::vector<std::uint8_t> bytes(img.size());
+                for (std::size_t i = 0; i < img.size(); ++i) bytes[i] = std::uint8_t(std::lround(img.data[i] * 255));
+                objects.push_back(std::move(bytes));
+            }
+    }
+    FrameView object(int o, std::size_t f) const {
+        return {objects[std::size_t(o) * kFrames + f].data(), height, width, 3, PixelType::U8};
+    }
+    std::vector<FrameView> all() const {
+        std::vector<FrameView> v;
+        for (const Image& b : background) v.push_back(FrameView::of(b));
+        for (int o = 0; o < object_count; ++o)
+            for (std::size_t f = 0; f < kFrames; ++f) v.push_back(object(o, f));
+        return v;
+    }
+};
+
+// What a plan gives for one combination: the backgrounds fused and read
+// back, then the objects fused with that image as their background.
+std::vector<Metrics> with_plans(Context& ctx, const FusionSpec& spec, const Sources& s,
+                                const std::vector<std::size_t>& combination) {
+    PlanConfig bg;
+    bg.fusion = spec;
+    bg.height = s.height;
+    bg.width = s.width;
+    bg.frames = int(combination.size());
+    bg.metrics = {};
+    Plan backgrounds(ctx, bg);
+    std::vector<FrameView> frames;
+    for (std::size_t f : combination) frames.push_back(FrameView::of(s.background[f]));
+    backgrounds.run(frames);
+    const Image fused_background = backgrounds.fused(0);
+    PlanConfig cfg = bg;
+    cfg.sensors = s.object_count;
+    cfg.input = PixelType::U8;
+    cfg.want_fused = false;
+    cfg.metrics = MetricSet::all();
+    Plan objects(ctx, cfg);
+    frames.clear();
+    for (int o = 0; o < s.object_count; ++o) {
+        objects.set_background(o, FrameView::of(fused_background));
+        for (std::size_t f : combination) frames.push_back(s.object(o, f));
+    }
+    objects.run(frames);
+    std::vector<Metrics> out;
+    for (int o = 0; o < s.object_count; ++o) out.push_back(objects.metrics(o));
+    return out;
+}
+
+std::vector<std::vector<std::size_t>> subsets(std::size_t k) {
+    std::vector<std::vector<std::size_t>> out;
+    for (unsigned mask = 0; mask < (1u << kFrames); ++mask) {
+        if (std::size_t(__builtin_popcount(mask)) != k) continue;
+        std::vector<std::size_t> c;
+        for (std::size_t f = 0; f < kFrames; ++f)
+            if (mask & (1u << f)) c.push_back(f);
+        out.push_back(c);
+    }
+    return out;
+}
+
+void expect_close(double expected, double got, const std::string& what) {
+    EXPECT_LE(std::abs(got - expected), 1e-5 * std::abs(expected) + 1e-12) << what << ": plan " << expected
+                                                                            << ", cached " << got;
+}
+
+struct Case {
+    Wavelet wavelet;
+    WaveletMode mode;
+    int height, width;
+};
+
+class CachedFusionTest : public VulkanTest, public ::testing::WithParamInterface<Case> {};
+
+// Every 2- and 3-subset of five frames (ten each: a full batch and a short
+// one for three sources), as the plans give them.
+TEST_P(CachedFusionTest, MatchesPlansForEveryCombination) {
+    const Case c = GetParam();
+    FusionSpec spec;
+    spec.method = Method::Wavelet;
+    spec.wavelet = c.wavelet;
+    spec.mode = c.mode;
+    spec.levels = 2;
+    const Sources s(c.height, c.width, 2);
+    vk::CachedFusion cached(ctx(), {spec, c.height, c.width, 3, 1 + s.object_count, kFrames}, s.all());
+    for (std::size_t k : {2u, 3u}) {
+        const auto combinations = subsets(k);
+        const auto got = cached.score(combinations);
+        ASSERT_EQ(got.size(), combinations.size());
+        for (std::size_t i = 0; i < combinations.size(); ++i) {
+            const std::vector<Metrics> expected = with_plans(ctx(), spec, s, combinations[i]);
+            ASSERT_EQ(got[i].size(), expected.size());
+            for (std::size_t o = 0; o < expected.size(); ++o) {
+                const std::string what = "k " + std::to_string(k) + " combination " + std::to_string(i) + " object " +
+                                         std::to_string(o);
+                expect_close(expected[o].sharpness, got[i][o].sharpness, what + " sharpness");
+                expect_close(expected[o].contrast, got[i][o].contrast, what + " contrast");
+                expect_close(*expected[o].background_diff, *got[i][o].background_diff, what + " background_diff");
+            }
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Wavelets, CachedFusionTest,
+                         ::testing::Values(Case{Wavelet::Haar, WaveletMode::Periodization, 48, 64},
+                                           Case{Wavelet::Bior44, WaveletMode::Periodization, 48, 64},
+                                           Case{Wavelet::Db2, WaveletMode::Periodization, 29, 37},
+                                           Case{Wavelet::Bior22, WaveletMode::Symmetric, 30, 44}));
+
+TEST_F(CachedFusionTest, RefusesWhatItCannotFuse) {
+    FusionSpec spec;
+    spec.method = Method::Wavelet;
+    spec.levels = 1;
+    const Sources s(32, 32, 1);
+    vk::CachedFusion cached(ctx(), {spec, 32, 32, 3, 2, kFrames}, s.all());
+    const std::vector<std::vector<std::size_t>> twice{{1, 1}}, past{{0, 5}}, mixed{{0, 1}, {0, 1, 2}};
+    const std::string subject = "cached fusion";
+    expect_error([&] { cached.score(twice); }, subject, ErrorKind::InvalidArgument, "names a frame twice");
+    expect_error([&] { cached.score(past); }, subject, ErrorKind::InvalidArgument, "past 5");
+    expect_error([&] { cached.score(mixed); }, subject, ErrorKind::InvalidArgument, "of one size");
+    FusionSpec laplacian;
+    laplacian.method = Method::Laplacian;
+    expect_error([&] { vk::CachedFusion(ctx(), {laplacian, 32, 32, 3, 2, kFrames}, s.all()); }, subject,
+                 ErrorKind::InvalidArgument, "only the wavelet");
+    expect_error([&] { vk::CachedFusion(ctx(), {spec, 32, 32, 3, 3, kFrames}, s.all()); }, subject,
+                 ErrorKind::InvalidArgument, "images for");
+}
+
+}  // namespace
+}  // namespace vkfuse::test
