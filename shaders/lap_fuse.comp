@@ -5,11 +5,12 @@
 // G_l - pyrUp(G_{l+1}), formed here and never stored, and the detail rule
 // picks across the K frames. An invocation takes the 2 x 2 outputs that share
 // one 3 x 3 neighbourhood of G_{l+1} (pyr_up_block). Source planes are
-// (s*K + k)*C + c, the fused plane (s, c) is s*C + c.
+// (s*K + k)*C + c, the fused plane (s, c) is s*C + c; with use_table, frame
+// k of sensor s is source frame table[s*K + k] instead (rule_fuse.comp).
 layout(local_size_x = 16, local_size_y = 16) in;
 // src: G_l planes, width x height; coarse: G_{l+1} planes, cw x ch; dst: the
 // fused planes, width x height.
-#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, coarse) X(2, plane_t, dst)
+#define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, coarse) X(2, plane_t, dst) X(3, uint, table)
 #include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
@@ -20,6 +21,7 @@ layout(push_constant, std430) uniform Push {
     uint frames;
     uint channels;
     uint rule;
+    uint use_table;
 } pc;
 #include "pyr_up.glsl"
 
@@ -31,7 +33,9 @@ void main() {
     uint plane_size = uint(pc.width * pc.height);
     RuleState st[4];
     for (uint k = 0u; k < pc.frames; ++k) {
-        uint plane = (s * pc.frames + k) * pc.channels + c;
+        uint frame = s * pc.frames + k;
+        if (pc.use_table != 0u) frame = BUF(table).v[frame];
+        uint plane = frame * pc.channels + c;
         mat2 up = pyr_up_block(plane * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);
         for (int a = 0; a < 2; ++a)
             for (int b = 0; b < 2; ++b) {

@@ -4,7 +4,8 @@
 // lap_fuse.comp eight columns at a time, for levels whose width is a multiple
 // of 8: an invocation takes the 2 x 8 outputs of coarse samples j .. j+3 of
 // row i (pyr_up4.glsl), reads G_l as four plane4 per frame and stores four.
-#define BUFFERS(X) X(0, plane4_t, src4) X(1, plane_t, coarse) X(2, plane4_t, coarse4) X(3, plane4_t, dst4)
+#define BUFFERS(X) X(0, plane4_t, src4) X(1, plane_t, coarse) X(2, plane4_t, coarse4) X(3, plane4_t, dst4) \
+    X(4, uint, table)
 #include "bindings.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
@@ -16,6 +17,7 @@ layout(push_constant, std430) uniform Push {
     uint frames;
     uint channels;
     uint rule;
+    uint use_table;
 } pc;
 #include "pyr_up4.glsl"
 
@@ -30,7 +32,9 @@ void main() {
     uint q0 = uint(2 * i * pc.width + 2 * j) / 4u, q2 = q0 + uint(pc.width) / 4u;
     vec4 pick[4], sum[4];
     for (uint k = 0u; k < pc.frames; ++k) {
-        uint plane = (s * pc.frames + k) * pc.channels + c;
+        uint frame = s * pc.frames + k;
+        if (pc.use_table != 0u) frame = BUF(table).v[frame];
+        uint plane = frame * pc.channels + c;
         Up4 up = pyr_up_quad(plane * uint(pc.cw * pc.ch), i, j);
         uint g = plane * plane_size / 4u;
         rule_add4(pc.rule, pick[0], sum[0], k, vec4(BUF(src4).v[g + q0]) - interleave_lo(up.even0, up.odd0));

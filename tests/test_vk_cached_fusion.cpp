@@ -1,4 +1,4 @@
-// vk::CachedFusion (the study's wavelet path): fusing combinations from
+// vk::CachedFusion (the study's multi-scale path): fusing combinations from
 // coefficients decomposed once gives, for every source, the metrics a plan
 // gives when it fuses the same frames and takes the same fusion of the
 // background frames as its background; bad combinations get one line each.
@@ -96,6 +96,7 @@ void expect_close(double expected, double got, const std::string& what) {
 }
 
 struct Case {
+    Method method;
     Wavelet wavelet;
     WaveletMode mode;
     int height, width;
@@ -108,7 +109,7 @@ class CachedFusionTest : public VulkanTest, public ::testing::WithParamInterface
 TEST_P(CachedFusionTest, MatchesPlansForEveryCombination) {
     const Case c = GetParam();
     FusionSpec spec;
-    spec.method = Method::Wavelet;
+    spec.method = c.method;
     spec.wavelet = c.wavelet;
     spec.mode = c.mode;
     spec.levels = 2;
@@ -132,11 +133,13 @@ TEST_P(CachedFusionTest, MatchesPlansForEveryCombination) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Wavelets, CachedFusionTest,
-                         ::testing::Values(Case{Wavelet::Haar, WaveletMode::Periodization, 48, 64},
-                                           Case{Wavelet::Bior44, WaveletMode::Periodization, 48, 64},
-                                           Case{Wavelet::Db2, WaveletMode::Periodization, 29, 37},
-                                           Case{Wavelet::Bior22, WaveletMode::Symmetric, 30, 44}));
+INSTANTIATE_TEST_SUITE_P(Methods, CachedFusionTest,
+                         ::testing::Values(Case{Method::Wavelet, Wavelet::Haar, WaveletMode::Periodization, 48, 64},
+                                           Case{Method::Wavelet, Wavelet::Bior44, WaveletMode::Periodization, 48, 64},
+                                           Case{Method::Wavelet, Wavelet::Db2, WaveletMode::Periodization, 29, 37},
+                                           Case{Method::Wavelet, Wavelet::Bior22, WaveletMode::Symmetric, 30, 44},
+                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 48, 64},
+                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 29, 37}));
 
 TEST_F(CachedFusionTest, RefusesWhatItCannotFuse) {
     FusionSpec spec;
@@ -149,10 +152,10 @@ TEST_F(CachedFusionTest, RefusesWhatItCannotFuse) {
     expect_error([&] { cached.score(twice); }, subject, ErrorKind::InvalidArgument, "names a frame twice");
     expect_error([&] { cached.score(past); }, subject, ErrorKind::InvalidArgument, "past 5");
     expect_error([&] { cached.score(mixed); }, subject, ErrorKind::InvalidArgument, "of one size");
-    FusionSpec laplacian;
-    laplacian.method = Method::Laplacian;
-    expect_error([&] { vk::CachedFusion(ctx(), {laplacian, 32, 32, 3, 2, kFrames}, s.all()); }, subject,
-                 ErrorKind::InvalidArgument, "only the wavelet");
+    FusionSpec brovey;
+    brovey.method = Method::Brovey;
+    expect_error([&] { vk::CachedFusion(ctx(), {brovey, 32, 32, 3, 2, kFrames}, s.all()); }, subject,
+                 ErrorKind::InvalidArgument, "only the wavelet and Laplacian");
     expect_error([&] { vk::CachedFusion(ctx(), {spec, 32, 32, 3, 3, kFrames}, s.all()); }, subject,
                  ErrorKind::InvalidArgument, "images for");
 }

@@ -30,8 +30,8 @@ struct PlanPair {
 // Plans kept at once: a study walks combinations by size, so only the sizes
 // in use (and the greedy search's) need theirs.
 constexpr std::size_t kPlansKept = 16;
-// The largest coefficient cache a study makes (a QVGA study of 64 settings
-// and 10 objects takes about 0.8 GiB); beyond it, plans.
+// The most device memory a study's decomposition takes (a QVGA study of 64
+// settings and 9 objects: about 1.8 GiB); beyond it, plans.
 constexpr std::uint64_t kMaxCacheBytes = std::uint64_t(2) << 30;
 
 }  // namespace
@@ -40,7 +40,7 @@ struct Evaluator::Impl {
     const StudyData& data;
     Context* context;
     std::vector<PlanPair> plans;  // most recently used last
-    // The coefficients of the last wavelet method scored (sources: the
+    // The coefficients of the last multi-scale method scored (sources: the
     // backgrounds, then each object; frames: the settings).
     std::string cached_method;
     std::unique_ptr<vk::CachedFusion> cached;
@@ -49,7 +49,7 @@ struct Evaluator::Impl {
         return {method.spec, data.height, data.width, 3, int(data.objects.size()) + 1, int(data.settings.size())};
     }
     bool uses_cache(const StudyMethod& method, std::size_t k) const {
-        return context && k > 1 && method.spec.method == Method::Wavelet &&
+        return context && k > 1 && (method.spec.method == Method::Wavelet || method.spec.method == Method::Laplacian) &&
                vk::CachedFusion::cache_bytes(cache_shape(method)) <= kMaxCacheBytes;
     }
     vk::CachedFusion& cache_for(const StudyMethod& method) {

@@ -13,10 +13,11 @@ namespace vkfuse::study {
 
 // For one method and one combination of settings: the metrics of every
 // object's fused image, its background being the same fusion of the
-// settings' backgrounds. On the device, a wavelet method decomposes every
-// frame (the objects' and the backgrounds') once and fuses batches of
-// combinations from those coefficients (vk/cached_fusion.hpp); the other
-// methods, and a dataset too large for the cache, run a plan per
+// settings' backgrounds. On the device, a multi-scale method (wavelet,
+// Laplacian) decomposes every frame (the objects' and the backgrounds') once
+// and fuses batches of combinations from those coefficients
+// (vk/cached_fusion.hpp); the pointwise methods, and a dataset too large
+// for the cache, run a plan per
 // combination whose sensors are the objects, the fused background computed
 // once for all of them (plans kept per method and settings count).
 class Evaluator {

@@ -33,10 +33,12 @@ PlanConfig base_config(const CachedFusionShape& s) {
 
 }  // namespace
 
-// The coefficient cache: per level, every source's every frame's block.
+// The coefficient cache: the buffers of the decomposition that hold its
+// levels (its scratch dropped), and the levels as the method's recorders
+// view them.
 struct CachedFusion::Cache {
-    std::vector<Buffer> levels;
-    std::vector<PlaneView> views;  // over `levels`, planes (source * frames + f) * C + c
+    std::vector<Buffer> buffers;
+    std::vector<PlaneView> levels;
 };
 
 // One recorded cycle for combinations of k frames: `batch` combinations of
@@ -53,75 +55,74 @@ struct CachedFusion::Graph {
 };
 
 std::uint64_t CachedFusion::cache_bytes(const CachedFusionShape& s) {
-    std::uint64_t samples = 0;
-    for (const WaveletBlock& b : wavelet_blocks(base_config(s))) samples += (std::uint64_t(b.height) * b.width + 63) / 64 * 64;
-    return samples * std::uint64_t(s.sources) * std::uint64_t(s.frames) * std::uint64_t(s.channels) * 4;
+    // At its peak the decomposition holds the frames as uploaded (float32),
+    // their scratch and the coefficients, each about the frames' size.
+    return 3 * std::uint64_t(s.sources) * std::uint64_t(s.frames) * std::uint64_t(s.channels) *
+           std::uint64_t(s.height) * std::uint64_t(s.width) * 4;
 }
 
 CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std::span<const FrameView> images)
     : ctx_(ContextAccess::of(context)), shape_(shape), cache_(std::make_unique<Cache>()) {
-    if (shape.fusion.method != Method::Wavelet)
-        throw Error(ErrorKind::InvalidArgument, "cached fusion: only the wavelet method fuses from coefficients");
+    if (shape.fusion.method != Method::Wavelet && shape.fusion.method != Method::Laplacian)
+        throw Error(ErrorKind::InvalidArgument, "cached fusion: only the wavelet and Laplacian methods fuse from coefficients");
     if (shape.sources < 2 || shape.frames < 2)
         throw Error(ErrorKind::InvalidArgument, "cached fusion: needs a background and a source, and two frames each");
     if (images.size() != std::size_t(shape.sources) * std::size_t(shape.frames))
         throw Error(ErrorKind::InvalidArgument, "cached fusion: got " + std::to_string(images.size()) +
                                                     " images for " + std::to_string(shape.sources) + " sources x " +
                                                     std::to_string(shape.frames) + " frames");
-    const PlanConfig base = base_config(shape);
     validate(shape.fusion, shape.height, shape.width, shape.channels, 2);
-    // The cache's first level and a cycle's planes are the largest buffers.
-    const std::uint64_t top = std::uint64_t(wavelet_blocks(base).front().height) * wavelet_blocks(base).front().width *
-                              std::uint64_t(shape.channels) * 4;
-    const std::uint64_t largest = std::max(top * std::uint64_t(shape.sources) * std::uint64_t(shape.frames),
-                                           top * std::uint64_t(kSensorsPerCycle + shape.sources));
-    addressed_ = ctx_.device_addresses_only || largest > ctx_.properties.limits.maxStorageBufferRange;
-    const std::uint32_t planes_per_frame = std::uint32_t(shape.channels);
-    for (const WaveletBlock& b : wavelet_blocks(base)) {
-        // Planes start 256 bytes apart at least: each source's part of the
-        // cache is then bindable at any device's storage-buffer offset alignment.
-        const std::uint32_t block = (std::uint32_t(b.height * b.width) + 63u) / 64u * 64u;
-        cache_->levels.emplace_back(ctx_, std::uint64_t(block) * shape.sources * shape.frames * planes_per_frame * 4,
-                                    MemoryUse::Device);
-        cache_->views.push_back({cache_->levels.back().address(), b.width, block});
+    const std::uint64_t frame_floats = std::uint64_t(shape.height) * shape.width * shape.channels;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const FrameView& v = images[i];
+        if (v.height != shape.height || v.width != shape.width || v.channels != shape.channels)
+            throw Error(ErrorKind::InvalidArgument, "cached fusion: frame " + std::to_string(i % shape.frames) +
+                                                        " of source " + std::to_string(i / shape.frames) +
+                                                        " is not " + std::to_string(shape.width) + "x" +
+                                                        std::to_string(shape.height) + "x" +
+                                                        std::to_string(shape.channels));
     }
-    // Each source's frames decomposed in one submit, into its part of the cache.
-    for (int source = 0; source < shape.sources; ++source) {
-        PlanConfig cfg = base;
-        cfg.sensors = 1;
-        cfg.frames = shape.frames;
-        cfg.metrics = {};
-        const FrameView* first = images.data() + std::size_t(source) * std::size_t(shape.frames);
-        cfg.input = first->type;
-        std::uint64_t bytes = 0;
-        for (int f = 0; f < shape.frames; ++f) {
-            const FrameView& v = first[f];
-            if (v.height != shape.height || v.width != shape.width || v.channels != shape.channels || v.type != cfg.input)
-                throw Error(ErrorKind::InvalidArgument, "cached fusion: frame " + std::to_string(f) + " of source " +
-                                                            std::to_string(source) + " differs in shape or type");
-            bytes += v.bytes();
+    // Every frame in one submit, as float32: 8-bit ones divided by 255 here
+    // as frames.glsl would (one correctly rounded division either way).
+    Buffer upload(ctx_, frame_floats * images.size() * 4, MemoryUse::Upload);
+    auto* dst = static_cast<float*>(upload.mapped());
+    for (const FrameView& v : images) {
+        if (v.type == PixelType::F32) {
+            std::memcpy(dst, v.data, frame_floats * 4);
+        } else {
+            const auto* bytes = static_cast<const std::uint8_t*>(v.data);
+            for (std::uint64_t i = 0; i < frame_floats; ++i) dst[i] = float(bytes[i]) / 255.0f;
         }
-        Buffer upload(ctx_, (bytes + 3) / 4 * 4, MemoryUse::Upload);
-        auto* dst = static_cast<std::uint8_t*>(upload.mapped());
-        for (int f = 0; f < shape.frames; ++f) {
-            std::memcpy(dst, first[f].data, first[f].bytes());
-            dst += first[f].bytes();
-        }
-        std::vector<PlaneView> levels = cache_->views;
-        for (PlaneView& v : levels)
-            v.addr += std::uint64_t(source) * shape.frames * planes_per_frame * v.plane_stride * 4;
-        std::vector<Buffer> buffers;
+        dst += frame_floats;
+    }
+    PlanConfig cfg = base_config(shape);
+    cfg.sensors = shape.sources;
+    cfg.frames = shape.frames;
+    cfg.metrics = {};
+    cfg.input = PixelType::F32;
+    std::vector<Buffer> buffers;
+    {
         DescriptorSets sets(ctx_);
         CommandSlot slot(ctx_, 0);
-        Recorder rec(ctx_, slot.recording_target(), slot.queries(), "", sets, addressed_);
-        std::vector<const Buffer*> fixed{&upload};
-        for (const Buffer& b : cache_->levels) fixed.push_back(&b);
-        GraphBuilder g{ctx_, cfg, rec, buffers, 0, fixed};
+        Recorder rec(ctx_, slot.recording_target(), slot.queries(), "", sets,
+                     ctx_.device_addresses_only || needs_device_addresses(cfg, ctx_.properties.limits));
+        GraphBuilder g{ctx_, cfg, rec, buffers, 0, {&upload}};
         FrameSource input(g, upload.span());
-        record_wavelet_decompose(g, input, levels);
+        cache_->levels = shape.fusion.method == Method::Wavelet ? record_wavelet_decompose(g, input)
+                                                                : record_laplacian_decompose(g, input);
         rec.finish();
         slot.submit_and_wait();
     }
+    std::uint64_t largest = 0;
+    for (Buffer& b : buffers)
+        if (std::any_of(cache_->levels.begin(), cache_->levels.end(),
+                        [&](const PlaneView& v) { return v.addr >= b.address() && v.addr < b.address() + b.size(); })) {
+            largest = std::max<std::uint64_t>(largest, b.size());
+            cache_->buffers.push_back(std::move(b));
+        }
+    // A cycle's largest buffer: the cache's, or its fused planes.
+    largest = std::max(largest, frame_floats * 4 * std::uint64_t(batch() * std::size_t(shape.sources)));
+    addressed_ = ctx_.device_addresses_only || largest > ctx_.properties.limits.maxStorageBufferRange;
 }
 
 CachedFusion::~CachedFusion() = default;
@@ -148,9 +149,11 @@ CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
     gr.slot.emplace(ctx_, 0);
     Recorder rec(ctx_, gr.slot->recording_target(), gr.slot->queries(), "", *gr.sets, addressed_);
     std::vector<const Buffer*> fixed{&gr.table, &gr.readback};
-    for (const Buffer& b : cache_->levels) fixed.push_back(&b);
+    for (const Buffer& b : cache_->buffers) fixed.push_back(&b);
     GraphBuilder g{ctx_, gr.cfg, rec, gr.buffers, 0, fixed};
-    const VkDeviceAddress fused = record_wavelet_cached(g, cache_->views, gr.table.span());
+    const VkDeviceAddress fused = shape_.fusion.method == Method::Wavelet
+                                      ? record_wavelet_cached(g, cache_->levels, gr.table.span())
+                                      : record_laplacian_cached(g, cache_->levels, gr.table.span());
     record_metrics(g, fused, fused, gr.readback.span(), std::nullopt, std::uint32_t(shape_.sources));
     rec.finish();
     return gr;

@@ -1,5 +1,5 @@
-// vk/cached_fusion.hpp - one wavelet fusion scored over many combinations of
-// the same frames, each frame decomposed once.
+// vk/cached_fusion.hpp - one multi-scale fusion (wavelet or Laplacian)
+// scored over many combinations of the same frames, each frame decomposed once.
 //
 // A study fuses every combination of a dataset's settings, for each object
 // and for the background. A plan would decompose a frame again in every
@@ -7,11 +7,12 @@
 // coefficient cache on the device, and a cycle fuses a batch of combinations
 // straight from it:
 //
-//   construction, per source:   frames --dwt rows, columns--> cache[level]
-//   score(), per batch:         table (combination b, source s -> frames)
-//                                 cache --rule_fuse by table--> fused blocks
-//                                 --idwt--> fused planes (b*S + s)
-//                                 --metrics, background = source 0's--> partials
+//   construction, one submit:  every source's frames --dwt rows, columns
+//                              (Laplacian: unpack, pyrDown chain)--> cache[level]
+//   score(), per batch:        table (combination b, source s -> k frames)
+//                                cache --rule_fuse (lap_fuse) by table--> fused levels
+//                                --idwt (collapse)--> fused planes (b*S + s)
+//                                --metrics, background = source 0's--> partials
 //
 // Source 0 is the background: every other source's background_diff is taken
 // against source 0's fusion of the same combination, as a plan whose
@@ -31,7 +32,7 @@
 namespace vkfuse::vk {
 
 struct CachedFusionShape {
-    FusionSpec fusion;     // a wavelet method
+    FusionSpec fusion;     // the wavelet or the Laplacian method
     int height = 0, width = 0, channels = 3;
     int sources = 0;       // source 0 the background
     int frames = 0;        // per source: the settings
@@ -46,7 +47,8 @@ public:
     CachedFusion(const CachedFusion&) = delete;
     CachedFusion& operator=(const CachedFusion&) = delete;
 
-    // Bytes of device memory the coefficient cache of `shape` takes.
+    // Bytes of device memory the decomposition of `shape` takes at its peak
+    // (the cache it keeps takes less).
     static std::uint64_t cache_bytes(const CachedFusionShape& shape);
 
     // Each combination (2 or more distinct frame indices, in fusion order,

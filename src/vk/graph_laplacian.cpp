@@ -18,22 +18,19 @@ std::uint32_t rule_id(Rule r) { return std::uint32_t(r); }
 
 constexpr std::uint32_t kPyrDownRows = 8;  // ROWS in pyr_down.comp
 
-}  // namespace
+// The pyramid's level sizes; lv[0].gauss is the caller's.
+std::vector<Level> level_sizes(const PlanConfig& cfg) {
+    std::vector<Level> lv(std::size_t(cfg.fusion.effective_levels()) + 1);
+    lv[0] = {std::uint32_t(cfg.width), std::uint32_t(cfg.height), 0, 0};
+    for (std::size_t l = 1; l < lv.size(); ++l) lv[l] = {(lv[l - 1].w + 1) / 2, (lv[l - 1].h + 1) / 2, 0, 0};
+    return lv;
+}
 
-// Level 0's two readers (the first pyrDown and level 0's fusion) read the
-// unpacked planes: reading the frames as uploaded instead, every channel of a
-// frame per invocation as dwt_rows_frames does, costs more on lavapipe than
-// the unpack pass it saves (docs/architecture.md has the figures).
-VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
-    const VkDeviceAddress input = frames.planes();
-    const int L = g.cfg.fusion.effective_levels();
-    std::vector<Level> lv(std::size_t(L) + 1);
-    lv[0] = {std::uint32_t(g.cfg.width), std::uint32_t(g.cfg.height), input, 0};
-    for (int l = 1; l <= L; ++l) {
-        auto& p = lv[std::size_t(l) - 1];
-        auto& c = lv[std::size_t(l)];
-        c.w = (p.w + 1) / 2;
-        c.h = (p.h + 1) / 2;
+// G_1 .. G_L of every frame from G_0.
+void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
+    for (std::size_t l = 1; l < lv.size(); ++l) {
+        auto& p = lv[l - 1];
+        auto& c = lv[l];
         c.gauss = g.planes(std::uint64_t(g.planes_in()) * c.w * c.h);
         // Four outputs per invocation, plane4 loads and stores: faster where
         // rows are long; on short ones the border quads' sample-by-sample
@@ -51,14 +48,21 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
                        groups(c.w, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
     }
     g.rec.mark("pyr_down");
-    for (int l = 0; l <= L; ++l) {
-        auto& c = lv[std::size_t(l)];
+}
+
+// Each level's fusion across the frames (with a table: the frames it names
+// among the pyramids'), then the collapse from the top, in place; returns
+// the fused planes.
+VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::optional<DeviceSpan> table) {
+    const std::size_t L = lv.size() - 1;
+    for (std::size_t l = 0; l <= L; ++l) {
+        auto& c = lv[l];
         const bool top = l == L;
-        const Level& coarse = top ? c : lv[std::size_t(l) + 1];
+        const Level& coarse = top ? c : lv[l + 1];
         c.fused = g.planes(std::uint64_t(g.planes_out()) * c.w * c.h);
         if (top) {  // the base rule on G_L itself
             const PlaneView top_in{c.gauss, int(c.w), c.w * c.h}, top_out{c.fused, int(c.w), c.w * c.h};
-            record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h)});
+            record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h), table});
             continue;
         }
         // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the same scalars.
@@ -69,19 +73,21 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
                                           .i32(int(coarse.h))
                                           .u32(std::uint32_t(g.cfg.frames))
                                           .u32(std::uint32_t(g.cfg.channels))
-                                          .u32(rule_id(g.cfg.fusion.detail_rule));
+                                          .u32(rule_id(g.cfg.fusion.detail_rule))
+                                          .u32(table ? 1 : 0);
         const DeviceSpan src = g.span(c.gauss), up = g.span(coarse.gauss), dst = g.span(c.fused);
+        const DeviceSpan frames = table ? *table : src;
         if (c.w % 8 == 0)  // 2 x 8 outputs per invocation, plane4 loads and stores
-            g.rec.dispatch("lap_fuse4", {src, up, up, dst}, scalars, groups(coarse.w / 4, 16), groups(coarse.h, 16),
-                           g.planes_out());
+            g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars, groups(coarse.w / 4, 16),
+                           groups(coarse.h, 16), g.planes_out());
         else  // 2 x 2 outputs per invocation
-            g.rec.dispatch("lap_fuse", {src, up, dst}, scalars, groups(coarse.w, 16), groups(coarse.h, 16),
+            g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars, groups(coarse.w, 16), groups(coarse.h, 16),
                            g.planes_out());
     }
     g.rec.mark("lap_fuse");
-    for (int l = L - 1; l >= 0; --l) {
-        auto& c = lv[std::size_t(l)];
-        auto& up = lv[std::size_t(l) + 1];
+    for (std::size_t i = L; i-- > 0;) {
+        auto& c = lv[i];
+        auto& up = lv[i + 1];
         if (c.w % 8 == 0) {
             const DeviceSpan coarse = g.span(up.fused);
             g.rec.dispatch("lap_collapse4", {coarse, coarse, g.span(c.fused)},
@@ -95,6 +101,34 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
     }
     g.rec.mark("lap_collapse");
     return lv[0].fused;
+}
+
+}  // namespace
+
+// Level 0's two readers (the first pyrDown and level 0's fusion) read the
+// unpacked planes: reading the frames as uploaded instead, every channel of a
+// frame per invocation as dwt_rows_frames does, costs more on lavapipe than
+// the unpack pass it saves (docs/architecture.md has the figures).
+VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
+    std::vector<Level> lv = level_sizes(g.cfg);
+    lv[0].gauss = frames.planes();
+    pyr_down_chain(g, lv);
+    return fuse_and_collapse(g, lv, std::nullopt);
+}
+
+std::vector<PlaneView> record_laplacian_decompose(GraphBuilder& g, FrameSource& frames) {
+    std::vector<Level> lv = level_sizes(g.cfg);
+    lv[0].gauss = frames.planes();
+    pyr_down_chain(g, lv);
+    std::vector<PlaneView> out;
+    for (const Level& l : lv) out.push_back({l.gauss, int(l.w), l.w * l.h});
+    return out;
+}
+
+VkDeviceAddress record_laplacian_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table) {
+    std::vector<Level> lv = level_sizes(g.cfg);
+    for (std::size_t l = 0; l < lv.size(); ++l) lv[l].gauss = levels[l].addr;
+    return fuse_and_collapse(g, lv, table);
 }
 
 }  // namespace vkfuse::vk

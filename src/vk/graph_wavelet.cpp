@@ -170,20 +170,24 @@ public:
         return invert(fused);
     }
 
-    // Every frame's coefficient blocks, level l's into levels[l] (planes_in()
-    // blocks of that level's shape), for fuse_cached to fuse in any combination.
-    void decompose(FrameSource& input, const std::vector<PlaneView>& levels) {
+    // Every frame's coefficient blocks, level by level (planes_in() blocks
+    // of each level's shape), for fuse_cached to fuse in any combination.
+    std::vector<PlaneView> decompose(FrameSource& input) {
         const auto& top = shapes_.front();
         const VkDeviceAddress scratch = g_.planes(std::uint64_t(g_.planes_in()) * top.h * top.bw);
+        std::vector<PlaneView> levels;
         PlaneView a;
         for (std::size_t l = 0; l < shapes_.size(); ++l) {
             const auto& s = shapes_[l];
             const PlaneView t{scratch, s.bw, std::uint32_t(s.h * s.bw)};
+            const PlaneView d{g_.planes(std::uint64_t(g_.planes_in()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             rows(input, a, t, int(l));
-            columns(t, levels[l], s);
-            a = {levels[l].addr, s.bw, levels[l].plane_stride};
+            columns(t, d, s);
+            levels.push_back(d);
+            a = d;
         }
         g_.rec.mark("dwt");
+        return levels;
     }
 
     // The plan's sensors fused from decompose()'s blocks: sensor s's frame k
@@ -193,8 +197,7 @@ public:
         for (std::size_t l = 0; l < shapes_.size(); ++l) {
             const auto& s = shapes_[l];
             const bool deepest = l + 1 == shapes_.size();
-            const std::uint32_t stride = levels[l].plane_stride;  // rule_fuse: the cache's
-            const PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * stride), s.bw, stride};
+            const PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
             // Above the deepest level the approximation corner is the inverse's to write.
             record_rule_fuse(g_, {levels[l], f, s.bw, s.bh, deepest ? s.cw : 0, deepest ? s.ch : 0, table,
                                   deepest ? 0 : s.cw, deepest ? 0 : s.ch});
@@ -401,14 +404,8 @@ private:
 
 VkDeviceAddress record_wavelet(GraphBuilder& g, FrameSource& input) { return WaveletGraph(g).record(input); }
 
-std::vector<WaveletBlock> wavelet_blocks(const PlanConfig& cfg) {
-    std::vector<WaveletBlock> out;
-    for (const LevelShape& s : level_shapes(cfg)) out.push_back({s.bh, s.bw});
-    return out;
-}
-
-void record_wavelet_decompose(GraphBuilder& g, FrameSource& input, const std::vector<PlaneView>& levels) {
-    WaveletGraph(g).decompose(input, levels);
+std::vector<PlaneView> record_wavelet_decompose(GraphBuilder& g, FrameSource& input) {
+    return WaveletGraph(g).decompose(input);
 }
 
 VkDeviceAddress record_wavelet_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table) {

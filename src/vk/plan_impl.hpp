@@ -111,21 +111,19 @@ struct RuleFuseRegion {
 };
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& region);
 
-// The wavelet's coefficients decomposed once and fused in many combinations
-// (vk/cached_fusion.hpp). Level l's coefficients of a frame form one block
-// of wavelet_blocks(cfg)[l] (height x width samples, its approximation
-// top-left); levels[l] views the blocks of every frame, planes (f*C + c),
-// at a plane stride of at least the block's samples.
-struct WaveletBlock {
-    int height = 0, width = 0;
-};
-std::vector<WaveletBlock> wavelet_blocks(const PlanConfig& cfg);
-// Every frame of the input, decomposed into `levels` (S*K*C blocks each).
-void record_wavelet_decompose(GraphBuilder& g, FrameSource& input, const std::vector<PlaneView>& levels);
-// The plan's S sensors fused from `levels`, sensor s's frame k being frame
-// table[s*K + k] there (S*K uint32); returns the fused planes as
-// record_wavelet does.
+// A multi-scale method's coefficients decomposed once and fused in many
+// combinations (vk/cached_fusion.hpp). *_decompose records the
+// decomposition of every frame of the input and returns its levels, each a
+// view of the S*K*C planes of one level of every frame (plane f*C + c; a
+// wavelet level holds each frame's coefficient block, approximation
+// top-left; a Laplacian level its Gaussian G_l, G_0 the frame itself).
+// *_cached fuses the plan's S sensors from such levels, sensor s's frame k
+// being frame table[s*K + k] there (S*K uint32), and returns the fused
+// planes as record_* does.
+std::vector<PlaneView> record_wavelet_decompose(GraphBuilder& g, FrameSource& input);
 VkDeviceAddress record_wavelet_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table);
+std::vector<PlaneView> record_laplacian_decompose(GraphBuilder& g, FrameSource& input);
+VkDeviceAddress record_laplacian_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table);
 
 // Workgroups of the metric pass per sensor: each writes kMetricPartialFloats
 // floats (shaders/metrics.comp).
