@@ -52,7 +52,7 @@ std::vector<BadRun> bad_runs() {
         {"unknown_backend", with(run, {"--backend", "gpu"}), "--backend gpu: expected cpu, vulkan or auto"},
         {"sim_unknown_object",
          {"sim", "--out", "@set", "--objects", "coin,spoon"},
-         "--objects: unknown object 'spoon'"},
+         "--objects spoon: unknown object (expected nothing, "},
         {"sim_grid_level", {"sim", "--out", "@set", "--grid", "0,16"}, "--grid 0,16: level 16 exceeds 15"},
         {"sim_grid_junk", {"sim", "--out", "@set", "--grid", "0,x"}, "--grid x: expected a non-negative integer"},
         {"sim_zero_frames", {"sim", "--out", "@set", "--frames", "0"}, "--frames 0: expected a positive integer"},

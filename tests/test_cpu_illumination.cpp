@@ -77,3 +77,20 @@ TEST(Illumination, BadSequencesNameTheWholeTextAndTheSetting) {
 
 }  // namespace
 }  // namespace vkfuse
+
+namespace vkfuse {
+namespace {
+
+TEST(Illumination, FullMeansEveryChannelAtTheLayoutsTop) {
+    const LedLayout digit = LedLayout::digit(), digit360 = LedLayout::digit360();
+    EXPECT_TRUE(Illumination({15, 15, 15}).is_full(digit));
+    EXPECT_FALSE(Illumination({15, 15, 14}).is_full(digit));
+    EXPECT_FALSE(Illumination({0, 15, 0}).is_full(digit));
+    EXPECT_FALSE(Illumination({15, 15}).is_full(digit));           // too few channels
+    EXPECT_FALSE(Illumination({15, 15, 15, 15}).is_full(digit));   // too many
+    EXPECT_FALSE(Illumination({15, 15, 15}).is_full(digit360));    // 24 channels, 0..255
+    EXPECT_TRUE(Illumination(std::vector<int>(24, 255)).is_full(digit360));
+}
+
+}  // namespace
+}  // namespace vkfuse

@@ -159,9 +159,7 @@ int run(const Args& args) {
     if (!args.has("--dataset")) {
         const LedLayout leds = LedLayout::digit();
         if (rec.grid.size() < 2) args.usage_error("--grid: one setting; a study fuses two or more");
-        if (std::none_of(rec.grid.begin(), rec.grid.end(), [&](const Illumination& s) {
-                return std::all_of(s.levels().begin(), s.levels().end(), [&](int v) { return v == leds.max_level; });
-            }))
+        if (std::none_of(rec.grid.begin(), rec.grid.end(), [&](const Illumination& s) { return s.is_full(leds); }))
             args.usage_error("--grid: no level " + std::to_string(leds.max_level) +
                              ", so no static setting (every LED at full) to measure the gains against");
     }

@@ -6,6 +6,7 @@
 
 #include "fusion_options.hpp"
 #include "run_config.hpp"
+#include "sim_record.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
@@ -28,15 +29,6 @@ IlluminationSequence sequence_option(const std::string& text, const LedLayout& l
     } catch (const Error& e) {
         fail("--sequence " + text + ": " + e.what());
     }
-}
-
-void check_object(const std::string& object) {
-    const std::vector<std::string> known = SimDigit::objects();
-    // "coin" is the documented other name of "coin-heads".
-    if (object == "coin" || std::find(known.begin(), known.end(), object) != known.end()) return;
-    std::string list;
-    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-    fail("--object " + object + ": unknown object (expected " + list + ")");
 }
 
 void check_replay_conflicts(const Args& args) {
@@ -103,7 +95,7 @@ RunOptions parse_run_options(const Args& args) {
     if (o.sensors > kMaxSimulatedSensors)
         fail("--sensors " + std::to_string(o.sensors) + ": at most " + std::to_string(kMaxSimulatedSensors));
     if (auto v = args.value("--object")) o.object = *v;
-    if (!o.replay) check_object(o.object);
+    if (!o.replay) check_sim_object("--object " + o.object, o.object);
     if (auto v = args.value("--motion")) o.motion = parse_sim_motion(*v);
     if (auto v = args.value("--motion-period")) {
         o.motion_period_s = parse_seconds("--motion-period", *v);

@@ -31,17 +31,18 @@ std::vector<std::string> every_sim_object() {
     return out;
 }
 
-std::vector<std::string> parse_sim_objects(const std::string& option, const std::string& text) {
+void check_sim_object(const std::string& subject, const std::string& object) {
     const std::vector<std::string> known = SimDigit::objects();
-    std::vector<std::string> out;
-    for (const std::string& o : split_list(text)) {
-        if (o != "coin" && std::find(known.begin(), known.end(), o) == known.end()) {
-            std::string list;
-            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-            throw Error(ErrorKind::InvalidArgument, option + ": unknown object '" + o + "' (expected " + list + ")");
-        }
-        out.push_back(o);
-    }
+    // "coin" is the documented other name of "coin-heads".
+    if (object == "coin" || std::find(known.begin(), known.end(), object) != known.end()) return;
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    throw Error(ErrorKind::InvalidArgument, subject + ": unknown object (expected " + list + ")");
+}
+
+std::vector<std::string> parse_sim_objects(const std::string& option, const std::string& text) {
+    std::vector<std::string> out = split_list(text);
+    for (const std::string& o : out) check_sim_object(option + " " + o, o);
     return out;
 }
 

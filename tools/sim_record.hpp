@@ -14,8 +14,10 @@ namespace vkfuse::cli {
 // beyond the DIGIT's.
 std::vector<Illumination> parse_grid(const std::string& option, const std::string& text);
 
-// "coin,lego" -> the objects, each one the simulator knows ("coin" is
-// "coin-heads"'s other name). Throws Error(InvalidArgument) naming `option`.
+// Throws Error(InvalidArgument) "<subject>: unknown object (expected ...)"
+// unless the simulator knows object ("coin" is "coin-heads"'s other name).
+void check_sim_object(const std::string& subject, const std::string& object);
+// "coin,lego" -> the objects, each checked; errors name "<option> <object>".
 std::vector<std::string> parse_sim_objects(const std::string& option, const std::string& text);
 // Every object but "nothing" and the alias "coin".
 std::vector<std::string> every_sim_object();

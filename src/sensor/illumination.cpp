@@ -1,4 +1,5 @@
 // LED layouts, illumination settings and their text form (include/vkfuse/sensor/illumination.hpp).
+#include <algorithm>
 #include <charconv>
 #include <string>
 #include <string_view>
@@ -46,6 +47,11 @@ std::string Illumination::to_string() const {
         out += std::to_string(levels_[i]);
     }
     return out;
+}
+
+bool Illumination::is_full(const LedLayout& layout) const {
+    return int(levels_.size()) == layout.channels &&
+           std::all_of(levels_.begin(), levels_.end(), [&](int level) { return level == layout.max_level; });
 }
 
 void Illumination::check(const LedLayout& layout) const {

@@ -45,13 +45,12 @@ StudyData load_study_data(const Dataset& dataset, const std::string& serial, con
     if (d.settings.empty()) fail(dataset, "sensor " + sensor.info.serial + " has no background frames");
     if (d.settings.size() < 2)
         fail(dataset, "sensor " + sensor.info.serial + " has one setting only; a study fuses two or more");
-    const int full = sensor.info.leds.max_level;
-    const auto is_static = [&](const Illumination& s) {
-        return std::all_of(s.levels().begin(), s.levels().end(), [&](int level) { return level == full; });
-    };
-    d.static_setting = std::size_t(std::find_if(d.settings.begin(), d.settings.end(), is_static) - d.settings.begin());
+    const LedLayout& leds = sensor.info.leds;
+    d.static_setting = std::size_t(std::find_if(d.settings.begin(), d.settings.end(),
+                                                [&](const Illumination& s) { return s.is_full(leds); }) -
+                                   d.settings.begin());
     if (d.static_setting == d.settings.size())
-        fail(dataset, "no background under the static setting (every LED at " + std::to_string(full) +
+        fail(dataset, "no background under the static setting (every LED at " + std::to_string(leds.max_level) +
                           "), which every gain is measured against");
 
     // The objects this sensor pressed, in recording order.

@@ -31,6 +31,9 @@ public:
     // Throws Error(InvalidArgument) naming the setting when the channel count or
     // a level does not fit layout ("illumination 16,0,0: level 16 of r exceeds 15").
     void check(const LedLayout& layout) const;
+    // Every LED channel at layout's highest level: the static setting that
+    // sensors without dynamic illumination keep, which a study measures against.
+    bool is_full(const LedLayout& layout) const;
 
     // "15,15,15" -> {15, 15, 15}; throws Error(InvalidArgument) on malformed text.
     static Illumination parse(std::string_view text);
