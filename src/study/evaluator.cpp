@@ -30,8 +30,9 @@ struct PlanPair {
 // Plans kept at once: a study walks combinations by size, so only the sizes
 // in use (and the greedy search's) need theirs.
 constexpr std::size_t kPlansKept = 16;
-// The most device memory a study's decomposition takes (a QVGA study of 64
-// settings and 9 objects: about 1.8 GiB); beyond it, plans.
+// The most device memory a study's decomposition may take (a QVGA study of
+// 23 settings and 9 objects: about 1.1 GiB); beyond it, plans, which need
+// far less.
 constexpr std::uint64_t kMaxCacheBytes = std::uint64_t(2) << 30;
 
 }  // namespace

@@ -56,8 +56,10 @@ struct CachedFusion::Graph {
 
 std::uint64_t CachedFusion::cache_bytes(const CachedFusionShape& s) {
     // At its peak the decomposition holds the frames as uploaded (float32),
-    // their scratch and the coefficients, each about the frames' size.
-    return 3 * std::uint64_t(s.sources) * std::uint64_t(s.frames) * std::uint64_t(s.channels) *
+    // their unpacked planes, a wavelet's row scratch and its levels (4/3 of
+    // the frames, a little more where periodization pads): under five times
+    // the frames' float32 size.
+    return 5 * std::uint64_t(s.sources) * std::uint64_t(s.frames) * std::uint64_t(s.channels) *
            std::uint64_t(s.height) * std::uint64_t(s.width) * 4;
 }
 
@@ -120,8 +122,10 @@ CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std
             largest = std::max<std::uint64_t>(largest, b.size());
             cache_->buffers.push_back(std::move(b));
         }
-    // A cycle's largest buffer: the cache's, or its fused planes.
-    largest = std::max(largest, frame_floats * 4 * std::uint64_t(batch() * std::size_t(shape.sources)));
+    // A cycle's largest buffer: the cache's, or one plane set of its fused
+    // sensors (a periodization block is up to one sample wider and taller).
+    const std::uint64_t padded = std::uint64_t(shape.height + 1) * std::uint64_t(shape.width + 1) * shape.channels;
+    largest = std::max(largest, padded * 4 * std::uint64_t(batch() * std::size_t(shape.sources)));
     addressed_ = ctx_.device_addresses_only || largest > ctx_.properties.limits.maxStorageBufferRange;
 }
 
@@ -136,7 +140,10 @@ CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
         return graphs_.back();
     }
     if (graphs_.size() == kGraphsKept) graphs_.pop_front();
-    Graph& gr = graphs_.emplace_back();
+    // Recorded aside and kept only once whole: a recording that throws
+    // (out of memory) leaves no half-recorded cycle behind.
+    std::list<Graph> fresh;
+    Graph& gr = fresh.emplace_back();
     gr.k = k;
     gr.batch = int(batch());
     gr.cfg = base_config(shape_);
@@ -156,7 +163,8 @@ CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
                                       : record_laplacian_cached(g, cache_->levels, gr.table.span());
     record_metrics(g, fused, fused, gr.readback.span(), std::nullopt, std::uint32_t(shape_.sources));
     rec.finish();
-    return gr;
+    graphs_.splice(graphs_.end(), fresh);
+    return graphs_.back();
 }
 
 std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vector<std::size_t>> combinations) {
