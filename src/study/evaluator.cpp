@@ -140,10 +140,6 @@ Evaluator::Evaluator(const StudyData& data, Context* context) : impl_(new Impl{d
 Evaluator::~Evaluator() = default;
 
 std::vector<Metrics> Evaluator::score(const StudyMethod& method, std::span<const std::size_t> combination) {
-    if (impl_->uses_cache(method, combination.size())) {
-        const std::vector<std::size_t> one(combination.begin(), combination.end());
-        return impl_->cache_for(method).score(std::span(&one, 1)).front();
-    }
     return impl_->context ? impl_->on_device(method, combination) : impl_->on_cpu(method, combination);
 }
 

@@ -16,10 +16,11 @@ namespace vkfuse::study {
 // settings' backgrounds. On the device, a multi-scale method (wavelet,
 // Laplacian) decomposes every frame (the objects' and the backgrounds') once
 // and fuses batches of combinations from those coefficients
-// (vk/cached_fusion.hpp); the pointwise methods, and a dataset too large
-// for the cache, run a plan per
-// combination whose sensors are the objects, the fused background computed
-// once for all of them (plans kept per method and settings count).
+// (vk/cached_fusion.hpp) when asked for many (score_many); a single
+// combination, the pointwise methods and a dataset too large for the cache
+// run a plan per combination whose sensors are the objects, the fused
+// background computed once for all of them (plans kept per method and
+// settings count).
 class Evaluator {
 public:
     Evaluator(const StudyData& data, Context* context);  // no context: the CPU reference
@@ -28,10 +29,12 @@ public:
     Evaluator& operator=(const Evaluator&) = delete;
 
     // combination: indices into data.settings, in fusion order. One setting
-    // is no fusion: the frame is scored as it is, whatever the method.
+    // is no fusion: the frame is scored as it is, whatever the method. Always
+    // through plans: a cache's batch would fuse one combination over and over
+    // to fill its slots.
     std::vector<Metrics> score(const StudyMethod& method, std::span<const std::size_t> combination);
-    // score() of each combination (all of one size, each in fusion order):
-    // the way to fuse many, batched where the method allows.
+    // The same for each combination (all of one size, each in fusion order):
+    // the way to fuse many, from the cache where the method has one.
     std::vector<std::vector<Metrics>> score_many(const StudyMethod& method,
                                                  std::span<const std::vector<std::size_t>> combinations);
     // How many combinations of size k score_many fuses at once for method:

@@ -157,11 +157,12 @@ private:
         for (std::size_t m = 0; m < M; ++m)
             for (std::size_t first = 0; first < C;) {
                 const std::size_t k = table_.combinations[first].size();
-                const std::size_t batch = takes(methods_[m], k) ? evaluator_.batch(methods_[m], k) : 1;
+                const bool scored = takes(methods_[m], k);
+                const std::size_t batch = scored ? evaluator_.batch(methods_[m], k) : 1;
                 const std::size_t step = std::max<std::size_t>(1, kPerStep / batch) * batch;
                 std::size_t end = first;
                 while (end < C && end - first < step && table_.combinations[end].size() == k) ++end;
-                if (takes(methods_[m], k)) {
+                if (scored) {
                     std::vector<std::vector<std::size_t>> orders;
                     for (std::size_t c = first; c < end; ++c)
                         orders.push_back(fusion_order(methods_[m], data_.settings, table_.combinations[c]));

@@ -41,12 +41,11 @@ struct CachedFusion::Cache {
     std::vector<PlaneView> levels;
 };
 
-// One recorded cycle for combinations of k frames: `batch` combinations of
+// One recorded cycle for combinations of k frames: batch() combinations of
 // every source at once.
 struct CachedFusion::Graph {
     std::size_t k = 0;
-    int batch = 0;
-    PlanConfig cfg;  // sensors: batch x sources fused, frames: k
+    PlanConfig cfg;  // sensors: batch() x sources fused, frames: k
     Buffer table;    // host-written: sensor j's k frames in the cache
     Buffer readback;
     std::vector<Buffer> buffers;
@@ -145,9 +144,8 @@ CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
     std::list<Graph> fresh;
     Graph& gr = fresh.emplace_back();
     gr.k = k;
-    gr.batch = int(batch());
     gr.cfg = base_config(shape_);
-    gr.cfg.sensors = gr.batch * shape_.sources;
+    gr.cfg.sensors = int(batch()) * shape_.sources;
     gr.cfg.frames = int(k);
     gr.table = Buffer(ctx_, std::uint64_t(gr.cfg.sensors) * k * 4, MemoryUse::Upload);
     gr.readback = Buffer(ctx_, std::uint64_t(gr.cfg.sensors) * metric_groups(gr.cfg) * kMetricPartialFloats * 4,
