@@ -196,8 +196,7 @@ std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vecto
             std::vector<Metrics> row;
             for (std::size_t s = 1; s < S; ++s) {
                 const std::span<const float> p(partials + (b * S + s) * n_floats, n_floats);
-                if (first_non_finite(p.data(), p.size()) != p.size())
-                    throw Error(ErrorKind::Numeric, "cached fusion: a metric sum overflowed float32 on the device");
+                check_device_results(gr.cfg, "cached fusion: source " + std::to_string(s), p, "a metric sum");
                 row.push_back(finish_metrics(p, gr.cfg, 0));
             }
             out.push_back(std::move(row));

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vk/magnitude.hpp"
 #include "vk/plan_impl.hpp"
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 namespace {
@@ -40,6 +42,24 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
                        .u32(background_group),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
     g.rec.mark("metrics");
+}
+
+// float16 planes hold magnitudes up to 65504; beyond that a plane sample
+// becomes Inf and the results Inf or NaN. Inputs in [0, 1] stay far inside at
+// any level count, so this is checked where results are read, not on every
+// input sample: a non-finite result of an fp16 plan is that overflow. A
+// float32 plan keeps its values inside float's range by scaling
+// (vk/magnitude.hpp), so one there is an overflow the scaling missed: an
+// error, never a NaN, Inf or JSON null handed on.
+void check_device_results(const PlanConfig& cfg, const std::string& owner, std::span<const float> results,
+                          const char* what) {
+    const std::size_t bad = first_non_finite(results.data(), results.size());
+    if (bad == results.size()) return;
+    if (cfg.precision == Precision::Fp16Storage)
+        throw Error(ErrorKind::Numeric, owner + ": a value left float16's range (65504) in a precision fp16 plan; "
+                                                "fuse this input with Precision::Fp32");
+    throw Error(ErrorKind::Numeric, owner + ": " + what + " overflowed float32 on the device (" +
+                                        (std::isnan(results[bad]) ? "NaN" : "Inf") + ")");
 }
 
 Metrics finish_metrics(std::span<const float> partials, const PlanConfig& cfg, int exponent) {

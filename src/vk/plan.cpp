@@ -189,25 +189,6 @@ std::string number(double v) {
     return text;
 }
 
-// A non-finite value read back from the device (fused samples or metric
-// sums). float16 planes hold magnitudes up to 65504; beyond that a plane
-// sample becomes Inf and the results Inf or NaN. Inputs in [0, 1] stay far
-// inside at any level count, so this is checked where results are read, not
-// on every input sample: a non-finite result of an fp16 plan is that
-// overflow. A float32 plan keeps its values inside float's range by scaling
-// (vk/magnitude.hpp), so one there is an overflow the scaling missed: an
-// error, never a NaN, Inf or JSON null handed on.
-void check_device_results(const PlanConfig& c, int sensor, std::span<const float> results, const char* what) {
-    const std::size_t bad = vk::first_non_finite(results.data(), results.size());
-    if (bad == results.size()) return;
-    if (c.precision == Precision::Fp16Storage)
-        throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) +
-                                            ": a value left float16's range (65504) in a precision fp16 plan; "
-                                            "fuse this input with Precision::Fp32");
-    throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) + ": " + what + " overflowed float32 on the device (" +
-                                        (std::isnan(results[bad]) ? "NaN" : "Inf") + ")");
-}
-
 }  // namespace
 
 Plan::Plan(Context& context, const PlanConfig& config)
@@ -458,9 +439,9 @@ const Image& Plan::fused(int sensor) const {
         const int e = im.exponent[std::size_t(sensor)];
         if (e == 0) {  // copied and checked in one pass
             if (vk::copy_magnitude(out.data.data(), src, out.size()) >= vk::kNonFinite)
-                check_device_results(im.cfg, sensor, std::span(src, out.size()), "the fused image");
+                vk::check_device_results(im.cfg, "sensor " + std::to_string(sensor), std::span(src, out.size()), "the fused image");
         } else {  // back to the frames' scale: exact, unless it leaves float32's range
-            check_device_results(im.cfg, sensor, std::span(src, out.size()), "the fused image");
+            vk::check_device_results(im.cfg, "sensor " + std::to_string(sensor), std::span(src, out.size()), "the fused image");
             const std::size_t i = vk::scale_back(out.data.data(), src, out.size(), e);
             if (i < out.size())
                 throw Error(ErrorKind::Numeric, "sensor " + std::to_string(sensor) + ": fused value " +
@@ -489,9 +470,7 @@ Metrics Plan::metrics(int sensor) const {
     const float* partials = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
                                                            im.partials_offset) +
                             im.result_slot(sensor) * n_floats;
-    // Checked before use: finish_metrics's std::max(0.0, NaN) would make a NaN sum a
-    // contrast of 0.
-    check_device_results(im.cfg, sensor, std::span(partials, n_floats), "a metric sum");
+    vk::check_device_results(im.cfg, "sensor " + std::to_string(sensor), std::span(partials, n_floats), "a metric sum");
     return vk::finish_metrics(std::span(partials, n_floats), im.cfg, im.exponent[std::size_t(sensor)]);
 }
 
