@@ -122,10 +122,12 @@ CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std
             cache_->buffers.push_back(std::move(b));
         }
     // A cycle's largest buffer: the cache's, or one plane set of its fused
-    // sensors (a periodization block is up to one sample wider and taller).
-    const std::uint64_t padded = std::uint64_t(shape.height + 1) * std::uint64_t(shape.width + 1) * shape.channels;
-    largest = std::max(largest, padded * 4 * std::uint64_t(batch() * std::size_t(shape.sources)));
-    addressed_ = ctx_.device_addresses_only || largest > ctx_.properties.limits.maxStorageBufferRange;
+    // sensors (as a plan's of that many sensors and one frame).
+    PlanConfig fused = base_config(shape);
+    fused.sensors = int(batch()) * shape.sources;
+    fused.frames = 1;
+    addressed_ = ctx_.device_addresses_only || largest > ctx_.properties.limits.maxStorageBufferRange ||
+                 needs_device_addresses(fused, ctx_.properties.limits);
 }
 
 CachedFusion::~CachedFusion() = default;
@@ -196,8 +198,7 @@ std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vecto
             std::vector<Metrics> row;
             for (std::size_t s = 1; s < S; ++s) {
                 const std::span<const float> p(partials + (b * S + s) * n_floats, n_floats);
-                check_device_results(gr.cfg, "cached fusion: source " + std::to_string(s), p, "a metric sum");
-                row.push_back(finish_metrics(p, gr.cfg, 0));
+                row.push_back(finish_metrics(p, gr.cfg, 0, "cached fusion: source " + std::to_string(s)));
             }
             out.push_back(std::move(row));
         }

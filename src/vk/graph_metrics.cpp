@@ -62,7 +62,8 @@ void check_device_results(const PlanConfig& cfg, const std::string& owner, std::
                                         (std::isnan(results[bad]) ? "NaN" : "Inf") + ")");
 }
 
-Metrics finish_metrics(std::span<const float> partials, const PlanConfig& cfg, int exponent) {
+Metrics finish_metrics(std::span<const float> partials, const PlanConfig& cfg, int exponent, const std::string& owner) {
+    check_device_results(cfg, owner, partials, "a metric sum");
     // The workgroups' partials (shaders/metrics.comp) in double: the sums
     // added, the moments of the luma deviations combined pairwise (Chan).
     double sharpness = 0, background_diff = 0, count = 0, mean = 0, m2 = 0;

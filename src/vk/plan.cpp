@@ -470,8 +470,8 @@ Metrics Plan::metrics(int sensor) const {
     const float* partials = reinterpret_cast<const float*>(static_cast<const std::uint8_t*>(im.readback.mapped()) +
                                                            im.partials_offset) +
                             im.result_slot(sensor) * n_floats;
-    vk::check_device_results(im.cfg, "sensor " + std::to_string(sensor), std::span(partials, n_floats), "a metric sum");
-    return vk::finish_metrics(std::span(partials, n_floats), im.cfg, im.exponent[std::size_t(sensor)]);
+    return vk::finish_metrics(std::span(partials, n_floats), im.cfg, im.exponent[std::size_t(sensor)],
+                              "sensor " + std::to_string(sensor));
 }
 
 std::uint64_t Plan::submits() const { return impl_->submits; }

@@ -140,9 +140,9 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
                     std::optional<DeviceSpan> image = std::nullopt, std::uint32_t background_group = 1);
 // One sensor's metrics from its metric_groups partials, summed in double;
 // each metric times 2^exponent (the scale its frames went to the device at).
-// Call check_device_results on the partials first: the finish would make a
-// NaN sum a contrast of 0.
-Metrics finish_metrics(std::span<const float> partials, const PlanConfig& cfg, int exponent);
+// Partials holding a NaN or Inf throw as check_device_results does, naming
+// `owner`: summed, a NaN would become a contrast of 0.
+Metrics finish_metrics(std::span<const float> partials, const PlanConfig& cfg, int exponent, const std::string& owner);
 // Throws ErrorKind::Numeric, naming `owner` ("sensor 2") and `what` ("a metric
 // sum", "the fused image"), where `results` read back hold a NaN or Inf: the
 // arithmetic left float32's range (float16's in an fp16 plan).
