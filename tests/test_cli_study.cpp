@@ -3,6 +3,7 @@
 // nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "cli_runner.hpp"
@@ -81,6 +82,34 @@ TEST(CliStudy, QuickTakesTwoObjectsAndUpToThreeSettings) {
     EXPECT_EQ(member(results, "combinations").number(), 8 + 28 + 56);
 }
 
+TEST(CliStudy, MethodsChoosesWhatIsStudied) {
+    TempDir tmp;
+    const std::string set = tmp.file("set"), out = tmp.file("some");
+    write_study_dataset(set);
+    const CliResult r = run_cli({"study", set, "--max-k", "2", "--greedy-max", "2", "--methods", "wavelet,laplacian", "--out", out});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find(set + ": 36 combinations x 5 methods on 2 objects"), std::string::npos) << r.out;
+    const json::Value results = json::parse(read_bytes(out + "/results.json"), "results.json");
+    std::vector<std::string> names;
+    for (const json::Value& m : member(results, "methods").array()) names.push_back(member(m, "name").string());
+    EXPECT_EQ(names, (std::vector<std::string>{"laplacian", "wavelet-haar", "wavelet-db2", "wavelet-bior2.2",
+                                               "wavelet-bior4.4"}));
+    EXPECT_NE(std::find(names.begin(), names.end(), member(results, "best_method").string()), names.end());
+    const std::string report = read_bytes(out + "/report.md");
+    EXPECT_NE(report.find("Methods studied (a selection): laplacian, wavelet-haar,"), std::string::npos) << report;
+
+    // Wavelets alone: whether the wavelet beats the other methods is not
+    // tested, and results.json says so with null.
+    const std::string only = tmp.file("only");
+    const CliResult w = run_cli({"study", set, "--max-k", "2", "--greedy-max", "2", "--methods", "wavelet-haar", "--out", only});
+    ASSERT_EQ(w.status, 0) << w.err;
+    EXPECT_NE(w.out.find(set + ": 36 combinations x 1 method on 2 objects"), std::string::npos) << w.out;
+    const json::Value findings = member(json::parse(read_bytes(only + "/results.json"), "results.json"), "findings");
+    EXPECT_TRUE(member(findings, "wavelet_most_likely_to_improve_all").is_null());
+    EXPECT_NE(read_bytes(only + "/report.md").find("1. *Wavelet fusion is the most likely to improve every metric at once*: not tested"),
+              std::string::npos);
+}
+
 TEST(CliStudy, BadInputGetsOneLineAndWritesNothing) {
     TempDir tmp;
     const std::string set = tmp.file("set"), out = tmp.file("out");
@@ -97,6 +126,9 @@ TEST(CliStudy, BadInputGetsOneLineAndWritesNothing) {
     refused({"study", set, "--max-k", "0", "--out", out}, "--max-k 0");
     refused({"study", tmp.file("nowhere"), "--out", out}, "manifest.json");
     refused({"study", set, "--objects", "ridge,teapot", "--out", out}, "no object \"teapot\"");
+    refused({"study", set, "--methods", "wavelet,dwt", "--out", out}, "--methods: \"dwt\" is none of");
+    refused({"study", set, "--methods", "channel-sum", "--out", out}, "takes any number");
+    refused({"study", set, "--methods", "", "--out", out}, "--methods: \"\" is none of");
     StudyDatasetSpec spec;
     spec.with_static = false;
     write_study_dataset(tmp.file("no-static"), spec);

@@ -29,6 +29,11 @@ TEST(CliTune, ADatasetsWinnerRunsAsAConfig) {
     EXPECT_NO_THROW(parse_method(member(c, "method").string()));
     EXPECT_EQ(member(member(c, "tuned"), "source").string(), set);
     EXPECT_NE(tune.out.find(config + ": " + sequence + " fused by "), std::string::npos) << tune.out;
+    // --methods: the winner is one of them.
+    const std::string brovey = tmp.file("brovey.json");
+    const CliResult only = run_cli({"tune", "--dataset", set, "--max-k", "2", "--methods", "brovey", "--out", brovey});
+    ASSERT_EQ(only.status, 0) << only.err;
+    EXPECT_EQ(member(json::parse(read_bytes(brovey), brovey), "method").string(), "brovey");
 
     const CliResult run = run_cli({"run", "--config", config, "--cycles", "2", "--virtual-clock", "--background-frames",
                                    "2", "--record", tmp.file("rec")});
@@ -104,6 +109,7 @@ TEST(CliTune, RefusesBeforeCapturingWhatCouldNotBeStudied) {
     refused({"tune", "--simulate", "--max-k", "1", "--out", tmp.file("a.json")}, "--max-k 1");
     refused({"tune", "--simulate", "--out", tmp.file("missing/a.json")}, "cannot write in");
     refused({"tune", "--simulate", "--objects", "../x", "--out", tmp.file("a.json")}, "--objects");
+    refused({"tune", "--simulate", "--methods", "pca", "--out", tmp.file("a.json")}, "--methods: \"pca\"");
 }
 
 }  // namespace

@@ -298,6 +298,52 @@ TEST_F(Study, ChannelSumTakesExactlyThreeSettings) {
     EXPECT_GE(r.fusions, 56u + 6u * 84u);  // the greedy search's longer sequences come on top
 }
 
+// A selection of methods scores exactly what the whole study scores for
+// them: each method's figures depend on no other method.
+TEST_F(Study, ASelectionOfMethodsScoresWhatTheWholeStudyDoesForThem) {
+    const Dataset d = read_dataset(dir_);
+    StudyOptions o = small_options(3);
+    o.objects = {"dots"};
+    const StudyResult all = run_study(d, o, &ctx());
+    o.methods = {"laplacian", "wavelet-bior4.4", "channel-sum"};
+    const StudyResult some = run_study(d, o, &ctx());
+    ASSERT_EQ(some.methods.size(), 3u);
+    const std::vector<std::string> order = {"channel-sum", "laplacian", "wavelet-bior4.4"};  // the table's
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const auto& m = some.methods[i];
+        EXPECT_EQ(m.name, order[i]);
+        const auto same = std::find_if(all.methods.begin(), all.methods.end(), [&](const auto& x) { return x.name == m.name; });
+        ASSERT_NE(same, all.methods.end());
+        EXPECT_EQ(m.fusions, same->fusions) << m.name;
+        EXPECT_EQ(m.improves_all_fraction, same->improves_all_fraction) << m.name;
+        EXPECT_EQ(m.mean_gain.sharpness, same->mean_gain.sharpness) << m.name;
+        EXPECT_EQ(m.mean_gain.contrast, same->mean_gain.contrast) << m.name;
+        EXPECT_EQ(m.mean_gain.background_diff, same->mean_gain.background_diff) << m.name;
+    }
+    EXPECT_TRUE(std::any_of(some.methods.begin(), some.methods.end(),
+                            [&](const auto& m) { return m.name == some.best_method; }));
+    EXPECT_EQ(some.static_metrics.size(), all.static_metrics.size());
+}
+
+TEST(StudyMethods, NamesSelectMethodsOrFamiliesInTableOrder) {
+    const auto names = [](const std::vector<StudyMethod>& methods) {
+        std::vector<std::string> out;
+        for (const StudyMethod& m : methods) out.push_back(m.name);
+        return out;
+    };
+    EXPECT_EQ(names(select_study_methods({})), names(study_methods()));
+    EXPECT_EQ(names(select_study_methods({"wavelet", "brovey"})),
+              (std::vector<std::string>{"brovey", "wavelet-haar", "wavelet-db2", "wavelet-bior2.2", "wavelet-bior4.4"}));
+    EXPECT_EQ(names(select_study_methods({"wavelet-db2", "wavelet-db2", "channel-sum"})),
+              (std::vector<std::string>{"channel-sum", "wavelet-db2"}));
+    expect_error([] { select_study_methods({"brovey", "dwt"}); }, "study methods", ErrorKind::InvalidArgument,
+                 "\"dwt\" is none of");
+    expect_error([] { select_study_methods({"wavelet-sym4"}, "--methods"); }, "--methods", ErrorKind::InvalidArgument,
+                 "wavelet-bior4.4");
+    expect_error([] { select_study_methods({"channel-sum"}); }, "study methods", ErrorKind::InvalidArgument,
+                 "takes any number");
+}
+
 TEST_F(Study, BadDatasetsAndOptionsGetOneLine) {
     const Dataset d = read_dataset(dir_);
     StudyOptions unknown = small_options(2);

@@ -2,12 +2,14 @@
 // method, on a dataset of the user's own sensor (vkfuse/study/study.hpp).
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 #include "backend.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "staged_directory.hpp"
 #include "stop_signal.hpp"
+#include "study_options.hpp"
 #include "study_output.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/dataset.hpp"
@@ -21,6 +23,7 @@ constexpr OptionSpec kOptions[] = {
     {"--max-k", "", "N", "combinations of 1..N settings (default 5)"},
     {"--quick", "", "", "a first look: combinations of up to 3 settings, the first two objects"},
     {"--objects", "", "A,B", "objects to study (default every object of the dataset)"},
+    kStudyMethodsOption,
     {"--sensor", "", "SERIAL", "the dataset's sensor to study (default its first)"},
     {"--greedy-max", "", "N", "greedy sequences up to N settings (default 12)"},
     {"--top", "", "N", "best pairs kept per metric (default 10)"},
@@ -30,7 +33,7 @@ constexpr OptionSpec kOptions[] = {
 constexpr CommandSpec kSpec{
     "study",
     "score every combination of a dataset's LED settings with every fusion method, as the paper did",
-    "vkfuse study DATASET [--out DIR] [--max-k N | --quick] [--objects A,B] [--backend B]",
+    "vkfuse study DATASET [--out DIR] [--max-k N | --quick] [--objects A,B] [--methods A,B] [--backend B]",
     "DATASET holds, per object, a frame under each LED setting and a background\n"
     "(nothing pressed) under each: `vkfuse sim`, or `vkfuse sim`'s layout recorded\n"
     "from a real DIGIT (README, \"Studying your sensor\"). Every combination of 1..N\n"
@@ -49,6 +52,9 @@ std::string eta(double seconds) {
     return text;
 }
 
+// "1 method", "7 methods".
+std::string counted(std::size_t n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
+
 int run(const Args& args) {
     if (args.operands().size() != 1)
         args.usage_error(args.operands().empty() ? "missing DATASET" : "one DATASET at a time");
@@ -59,6 +65,7 @@ int run(const Args& args) {
     options.max_k = quick ? 3 : args.has("--max-k") ? parse_positive_int("--max-k", *args.value("--max-k")) : 5;
     if (options.max_k < 2) args.usage_error("--max-k 1: a study fuses combinations of at least 2 settings");
     if (auto v = args.value("--objects")) options.objects = split_list(*v);
+    options.methods = parse_study_methods(args);
     if (auto v = args.value("--sensor")) options.serial = *v;
     if (auto v = args.value("--greedy-max")) options.greedy_max = parse_positive_int("--greedy-max", *v);
     if (auto v = args.value("--top")) options.top = parse_positive_int("--top", *v);
@@ -86,9 +93,10 @@ int run(const Args& args) {
     progress.finish();
     write_study(staged.path(), dataset_dir, result);
     staged.publish();
-    std::printf("%s: %zu combinations x %zu methods on %zu objects in %.1f s; most likely to improve every metric: "
+    std::printf("%s: %zu combinations x %s on %s in %.1f s; most likely to improve every metric: "
                 "%s; report in %s/report.md\n",
-                dataset_dir.c_str(), result.combinations, result.methods.size(), result.objects.size(), result.seconds,
+                dataset_dir.c_str(), result.combinations, counted(result.methods.size(), "method").c_str(),
+                counted(result.objects.size(), "object").c_str(), result.seconds,
                 result.best_method.c_str(), out.c_str());
     return 0;
 }

@@ -18,6 +18,7 @@
 #include "sim_record.hpp"
 #include "staged_directory.hpp"
 #include "stop_signal.hpp"
+#include "study_options.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/study/study.hpp"
 
@@ -33,6 +34,7 @@ constexpr OptionSpec kOptions[] = {
     {"--grid", "", "V,V", "LED levels 0..15; every r,g,b combination is captured (default 0,15: 8 settings)"},
     {"--background-frames", "", "N", "no-contact frames averaged per setting (default 4)"},
     {"--max-k", "", "N", "combinations of 1..N settings (default 3)"},
+    kStudyMethodsOption,
     {"--keep", "", "DIR", "also keep the captured frames as a dataset (a new directory) for vkfuse study or run --replay"},
     kBackendOption,
 };
@@ -40,7 +42,7 @@ constexpr OptionSpec kOptions[] = {
 constexpr CommandSpec kSpec{
     "tune",
     "find the LED sequence and fusion method that serve your sensor best, as a config for vkfuse run",
-    "vkfuse tune [--out FILE] [--dataset DIR | --sensor SERIAL | --simulate] [--objects A,B] [--grid V,V]",
+    "vkfuse tune [--out FILE] [--dataset DIR | --sensor SERIAL | --simulate] [--objects A,B] [--grid V,V] [--methods A,B]",
     "Captures, on the DIGIT plugged in (asking you on the terminal to press each\n"
     "object in turn) or on the simulated DIGIT, a frame of each object under every\n"
     "setting of --grid and the backgrounds; runs `vkfuse study` on them; and writes\n"
@@ -148,6 +150,7 @@ int run(const Args& args) {
     StudyOptions options;
     options.max_k = args.has("--max-k") ? parse_positive_int("--max-k", *args.value("--max-k")) : 3;
     if (options.max_k < 2) args.usage_error("--max-k 1: a study fuses combinations of at least 2 settings");
+    options.methods = parse_study_methods(args);
     const Backend backend = parse_backend_option(args.value("--backend").value_or("auto"));
     RecordOptions rec;
     rec.grid = parse_grid("--grid", args.value("--grid").value_or("0,15"));

@@ -108,7 +108,7 @@ std::string results_json(const std::string& dataset, const StudyResult& r, const
         {"static_setting", setting_json(r.settings[r.static_setting])},
         {"objects", std::move(objects)},
         {"findings",
-         Value::Object{{"wavelet_most_likely_to_improve_all", f.wavelet_most_likely},
+         Value::Object{{"wavelet_most_likely_to_improve_all", f.wavelet_tested ? Value(f.wavelet_most_likely) : Value()},
                        {"pair_15_15_15_0_15_0_among_best", f.has_best_pair ? Value(f.best_pair_among_best) : Value()},
                        {"pair_15_15_15_0_15_0_among_best_by", f.best_pair_metrics},
                        {"sharpness_greedy_peak_n", std::uint64_t(f.sharpness_greedy_n)},
@@ -143,9 +143,16 @@ std::string report_md(const std::string& dataset, const StudyResult& r, const St
           fixed(r.seconds, 1) + " s on " + r.backend + ". Every gain is a metric of the fused image divided by the " +
           "same object's frame under the static setting (" + r.settings[r.static_setting].to_string() +
           "); above 1 is better. A fused image's background is the same fusion of the settings' backgrounds.\n\n";
+    if (r.methods.size() < study_methods().size()) {
+        md += "Methods studied (a selection):";
+        for (const auto& m : r.methods) md += " " + m.name + (&m == &r.methods.back() ? ".\n\n" : ",");
+    }
     md += "## The paper's findings, on this sensor\n\n";
-    md += "1. *Wavelet fusion is the most likely to improve every metric at once*: " + verdict(f.wavelet_most_likely) +
-          ". The most likely here is " + r.best_method + " (see the table below).\n";
+    md += "1. *Wavelet fusion is the most likely to improve every metric at once*: " +
+          (f.wavelet_tested ? verdict(f.wavelet_most_likely) + ". The most likely here is " + r.best_method +
+                                  " (see the table below).\n"
+                            : std::string("not tested: the study's methods leave out the wavelet or every other "
+                                          "method.\n"));
     md += "2. *(15,15,15) + (0,15,0) is among the best pairs*: ";
     const std::string top = "the top " + std::to_string(r.best_pairs[0].size()) + " pairs of " + r.ranking_method;
     md += !f.has_best_pair ? "not tested: the dataset lacks one of the two settings.\n"
@@ -198,7 +205,10 @@ std::string report_md(const std::string& dataset, const StudyResult& r, const St
 
 StudyFindings study_findings(const StudyResult& r) {
     StudyFindings f;
-    f.wavelet_most_likely = r.best_method.rfind("wavelet", 0) == 0;
+    const auto is_wavelet = [](const std::string& name) { return name.rfind("wavelet", 0) == 0; };
+    f.wavelet_tested = std::any_of(r.methods.begin(), r.methods.end(), [&](const auto& m) { return is_wavelet(m.name); }) &&
+                       !std::all_of(r.methods.begin(), r.methods.end(), [&](const auto& m) { return is_wavelet(m.name); });
+    f.wavelet_most_likely = is_wavelet(r.best_method);
     const auto find = [&](const Illumination& s) {
         return std::size_t(std::find(r.settings.begin(), r.settings.end(), s) - r.settings.begin());
     };

@@ -15,7 +15,10 @@ namespace vkfuse::cli {
 
 // The paper's findings, checked on a study's result.
 struct StudyFindings {
-    bool wavelet_most_likely = false;  // best_method is a wavelet
+    // best_method is a wavelet; tested only where a wavelet and another
+    // method were both studied (--methods may leave either out).
+    bool wavelet_tested = false;
+    bool wavelet_most_likely = false;
     // (15,15,15)+(0,15,0) among the best pairs of some metric; nullopt-like
     // state when the dataset lacks either setting (has_best_pair false).
     bool has_best_pair = false;

@@ -135,8 +135,7 @@ Gains mean_gain(const Gains* g, std::size_t objects) {
     return {sum.sharpness / n, sum.contrast / n, sum.background_diff / n};
 }
 
-std::size_t analyse(const Table& t, int top, StudyResult& r) {
-    const std::vector<StudyMethod> methods = study_methods();
+std::size_t analyse(const Table& t, const std::vector<StudyMethod>& methods, int top, StudyResult& r) {
     summarise_methods(t, r);
     // Only methods that fused something compete (channel-sum needs
     // combinations of exactly three). The share improving every metric

@@ -60,8 +60,8 @@ std::vector<Gains> gains_of(const std::vector<Metrics>& metrics, const std::vect
 class Study {
 public:
     Study(const Dataset& dataset, const StudyOptions& options, Context* context)
-        : options_(checked(options)), data_(load_study_data(dataset, options.serial, options.objects)),
-          methods_(study_methods()), evaluator_(data_, context) {
+        : options_(checked(options)), methods_(select_study_methods(options.methods)),
+          data_(load_study_data(dataset, options.serial, options.objects)), evaluator_(data_, context) {
         for (const StudyMethod& m : methods_)
             for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), data_.settings.size()); ++k)
                 if (takes(m, k)) try {
@@ -100,7 +100,7 @@ public:
         score_singles(r);
         score_table();
         for (const StudyMethod& m : methods_) r.methods.push_back({m.name, 0, {}, 0});
-        ranking_ = analyse(table_, options_.top, r);
+        ranking_ = analyse(table_, methods_, options_.top, r);
         r.ranking_method = methods_[ranking_].name;
         for (const StudyMethod& m : methods_)
             if (m.name == r.best_best_method) r.best.settings = fusion_order(m, data_.settings, r.best.settings);
@@ -259,8 +259,8 @@ private:
     }
 
     const StudyOptions& options_;
+    std::vector<StudyMethod> methods_;  // before the data: a bad name fails before any frame is read
     StudyData data_;
-    std::vector<StudyMethod> methods_;
     Evaluator evaluator_;
     Table table_;
     std::map<std::vector<std::size_t>, std::size_t> index_;
@@ -287,6 +287,37 @@ std::vector<StudyMethod> study_methods() {
             out.push_back({std::string(info.name) + "-" + std::string(to_string(w)), spec});
         }
     }
+    return out;
+}
+
+std::vector<StudyMethod> select_study_methods(const std::vector<std::string>& names, const std::string& what) {
+    const std::vector<StudyMethod> all = study_methods();
+    if (names.empty()) return all;
+    const auto method_of = [](const StudyMethod& m) { return std::string(core::method_info(m.spec.method).name); };
+    std::vector<bool> chosen(all.size(), false);
+    for (const std::string& name : names) {
+        bool known = false;
+        for (std::size_t i = 0; i < all.size(); ++i)
+            if (all[i].name == name || method_of(all[i]) == name) chosen[i] = known = true;
+        if (known) continue;
+        std::string choices;  // in table order, a family-wide name before its families
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            if (i > 0) choices += ", ";
+            if (all[i].name != method_of(all[i]) && (i == 0 || method_of(all[i - 1]) != method_of(all[i])))
+                choices += method_of(all[i]) + " (every family), ";
+            choices += all[i].name;
+        }
+        throw Error(ErrorKind::InvalidArgument, what + ": \"" + name + "\" is none of " + choices);
+    }
+    std::vector<StudyMethod> out;
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (chosen[i]) out.push_back(all[i]);
+    if (std::none_of(out.begin(), out.end(),
+                     [](const StudyMethod& m) { return core::method_info(m.spec.method).exact_frames == 0; }))
+        throw Error(ErrorKind::InvalidArgument,
+                    what + ": " + out.front().name +
+                        " alone fuses a fixed number of settings; the greedy search and the pairing need a method "
+                        "that takes any number (add one)");
     return out;
 }
 

@@ -30,9 +30,9 @@ Gains mean_gain(const Gains* per_object, std::size_t objects);
 // What the table alone answers: the method summaries and best_method, the
 // best pairs and their intersections, best_k and the best combination
 // (result.settings, objects and methods' names are set before). Returns the
-// method the pairs are ranked by, and the greedy search uses: best_method,
-// or where that one takes a fixed number of settings, the best of those that
-// take any.
-std::size_t analyse(const Table& table, int top, StudyResult& result);
+// method (an index into methods, the table's) the pairs are ranked by, and
+// the greedy search uses: best_method, or where that one takes a fixed number
+// of settings, the best of those that take any.
+std::size_t analyse(const Table& table, const std::vector<StudyMethod>& methods, int top, StudyResult& result);
 
 }  // namespace vkfuse::study

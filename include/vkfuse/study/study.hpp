@@ -34,6 +34,14 @@ struct StudyMethod {
 };
 // Every method, the wavelet once per family, in the method table's order.
 std::vector<StudyMethod> study_methods();
+// The methods a study of `names` scores, in study_methods() order: each name
+// is a study method's ("wavelet-bior4.4") or a method's ("wavelet": every
+// family); none: every method. Throws Error(InvalidArgument), its message
+// starting with `what`, for a name that is neither, and for a selection
+// without a method that takes any number of settings (channel-sum alone
+// fuses exactly three, and the greedy search and the pairing need more).
+std::vector<StudyMethod> select_study_methods(const std::vector<std::string>& names,
+                                              const std::string& what = "study methods");
 
 // The order `method` fuses a combination in (indices into settings, given in
 // any order): ascending, except for channel-sum, which takes R, G and B from
@@ -57,6 +65,7 @@ struct Gains {
 struct StudyOptions {
     std::string serial;                // the dataset's sensor; empty: its first
     std::vector<std::string> objects;  // empty: every object the dataset holds
+    std::vector<std::string> methods;  // select_study_methods()' names; empty: every method
     int max_k = 5;                     // combinations of 1..max_k settings (at least 2)
     int greedy_max = 12;               // greedy sequences up to this many settings
     int top = 10;                      // best pairs kept per metric
@@ -85,7 +94,7 @@ struct StudyResult {
         Gains mean_gain;                   // over the same
         std::size_t fusions = 0;
     };
-    std::vector<MethodSummary> methods;  // study_methods() order
+    std::vector<MethodSummary> methods;  // the methods studied, study_methods() order
     // Highest improves_all_fraction; among equal shares, the highest mean of
     // the three mean gains.
     std::string best_method;
