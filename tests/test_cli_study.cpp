@@ -108,6 +108,18 @@ TEST(CliStudy, MethodsChoosesWhatIsStudied) {
     EXPECT_TRUE(member(findings, "wavelet_most_likely_to_improve_all").is_null());
     EXPECT_NE(read_bytes(only + "/report.md").find("1. *Wavelet fusion is the most likely to improve every metric at once*: not tested"),
               std::string::npos);
+    // No wavelet, or nothing beside it that fused: channel-sum fuses only
+    // combinations of three, so at --max-k 2 the wavelet would win unopposed.
+    const auto finding = [&](const std::string& methods, const std::string& max_k) {
+        const std::string dir = tmp.file("f-" + methods + "-" + max_k);
+        const CliResult c = run_cli({"study", set, "--max-k", max_k, "--greedy-max", "2", "--methods", methods, "--out", dir});
+        EXPECT_EQ(c.status, 0) << c.err;
+        return member(member(json::parse(read_bytes(dir + "/results.json"), "results.json"), "findings"),
+                      "wavelet_most_likely_to_improve_all");
+    };
+    EXPECT_TRUE(finding("brovey,laplacian", "2").is_null());
+    EXPECT_TRUE(finding("wavelet-haar,channel-sum", "2").is_null());
+    EXPECT_FALSE(finding("wavelet-haar,channel-sum", "3").is_null());
 }
 
 TEST(CliStudy, BadInputGetsOneLineAndWritesNothing) {

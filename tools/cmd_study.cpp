@@ -32,15 +32,15 @@ constexpr OptionSpec kOptions[] = {
 
 constexpr CommandSpec kSpec{
     "study",
-    "score every combination of a dataset's LED settings with every fusion method, as the paper did",
+    "score every combination of a dataset's LED settings with every fusion method (or --methods), as the paper did",
     "vkfuse study DATASET [--out DIR] [--max-k N | --quick] [--objects A,B] [--methods A,B] [--backend B]",
     "DATASET holds, per object, a frame under each LED setting and a background\n"
     "(nothing pressed) under each: `vkfuse sim`, or `vkfuse sim`'s layout recorded\n"
     "from a real DIGIT (README, \"Studying your sensor\"). Every combination of 1..N\n"
-    "settings is fused by every method and scored (sharpness, RMS contrast,\n"
-    "difference with background) against the static setting's frame; then the\n"
-    "paper's analysis: methods, best pairs, greedy sequences, pairings. Writes\n"
-    "results.json, report.md and SVG plots.",
+    "settings is fused by every method (or those of --methods) and scored\n"
+    "(sharpness, RMS contrast, difference with background) against the static\n"
+    "setting's frame; then the paper's analysis: methods, best pairs, greedy\n"
+    "sequences, pairings. Writes results.json, report.md and SVG plots.",
     kOptions,
     "vkfuse study coin-set --quick --out coin-study",
 };

@@ -206,8 +206,13 @@ std::string report_md(const std::string& dataset, const StudyResult& r, const St
 StudyFindings study_findings(const StudyResult& r) {
     StudyFindings f;
     const auto is_wavelet = [](const std::string& name) { return name.rfind("wavelet", 0) == 0; };
-    f.wavelet_tested = std::any_of(r.methods.begin(), r.methods.end(), [&](const auto& m) { return is_wavelet(m.name); }) &&
-                       !std::all_of(r.methods.begin(), r.methods.end(), [&](const auto& m) { return is_wavelet(m.name); });
+    // Only methods that fused something competed (analyse()): channel-sum
+    // chosen beside a wavelet fuses nothing without combinations of three.
+    const auto competed = [&](bool wavelet) {
+        return std::any_of(r.methods.begin(), r.methods.end(),
+                           [&](const auto& m) { return m.fusions > 0 && is_wavelet(m.name) == wavelet; });
+    };
+    f.wavelet_tested = competed(true) && competed(false);
     f.wavelet_most_likely = is_wavelet(r.best_method);
     const auto find = [&](const Illumination& s) {
         return std::size_t(std::find(r.settings.begin(), r.settings.end(), s) - r.settings.begin());

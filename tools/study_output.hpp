@@ -16,7 +16,8 @@ namespace vkfuse::cli {
 // The paper's findings, checked on a study's result.
 struct StudyFindings {
     // best_method is a wavelet; tested only where a wavelet and another
-    // method were both studied (--methods may leave either out).
+    // method both fused something (--methods may leave either out, and
+    // channel-sum fuses only combinations of three).
     bool wavelet_tested = false;
     bool wavelet_most_likely = false;
     // (15,15,15)+(0,15,0) among the best pairs of some metric; nullopt-like

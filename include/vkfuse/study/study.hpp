@@ -3,9 +3,10 @@
 //
 // A dataset holding, per object, a frame under each LED setting and a
 // background (nothing pressed) under each is scored for every combination of
-// 1..max_k settings and every fusion method: the sharpness, RMS contrast and
-// difference with background of each fused image, relative to the same
-// object's frame under the static setting (every LED at full level). The
+// 1..max_k settings and every fusion method (or those options.methods names):
+// the sharpness, RMS contrast and difference with background of each fused
+// image, relative to the same object's frame under the static setting (every
+// LED at full level). The
 // background a fused image is compared with is the same fusion of the
 // settings' backgrounds, as `vkfuse run` does. Then the paper's analysis:
 // which method most often improves every metric at once, the best pairs,
@@ -136,7 +137,8 @@ struct StudyResult {
 // Throws Error naming the dataset for a sensor, object or setting that is
 // missing, a dataset without the static setting, frames too small for a
 // method, or more combinations, objects or frames than a study takes (a
-// dataset's size never chooses how much memory is used).
+// dataset's size never chooses how much memory is used); and, before any
+// frame is read, for options.methods that select_study_methods refuses.
 StudyResult run_study(const Dataset& dataset, const StudyOptions& options, Context* context);
 
 }  // namespace vkfuse
