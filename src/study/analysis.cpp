@@ -11,8 +11,6 @@ namespace {
 
 double mean_of_three(const Gains& g) { return (g.sharpness + g.contrast + g.background_diff) / 3; }
 
-bool takes_any_count(const StudyMethod& m) { return core::method_info(m.spec.method).exact_frames == 0; }
-
 // Indices of the `top` pairs by `gain_of` (highest first; ties keep the
 // table's order, so the result never depends on the sort).
 template <class GainOf>
@@ -123,6 +121,8 @@ void find_best(const Table& t, StudyResult& r) {
 }
 
 }  // namespace
+
+bool takes_any_count(const StudyMethod& m) { return core::method_info(m.spec.method).exact_frames == 0; }
 
 Gains mean_gain(const Gains* g, std::size_t objects) {
     Gains sum;

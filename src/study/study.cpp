@@ -312,8 +312,7 @@ std::vector<StudyMethod> select_study_methods(const std::vector<std::string>& na
     std::vector<StudyMethod> out;
     for (std::size_t i = 0; i < all.size(); ++i)
         if (chosen[i]) out.push_back(all[i]);
-    if (std::none_of(out.begin(), out.end(),
-                     [](const StudyMethod& m) { return core::method_info(m.spec.method).exact_frames == 0; }))
+    if (std::none_of(out.begin(), out.end(), study::takes_any_count))
         throw Error(ErrorKind::InvalidArgument,
                     what + ": " + out.front().name +
                         " alone fuses a fixed number of settings; the greedy search and the pairing need a method "

@@ -24,6 +24,10 @@ struct Table {
     }
 };
 
+// Whether m fuses any number of settings (channel-sum: exactly three), as the
+// ranking method, the greedy search and the pairing need.
+bool takes_any_count(const StudyMethod& m);
+
 // The mean over objects.
 Gains mean_gain(const Gains* per_object, std::size_t objects);
 

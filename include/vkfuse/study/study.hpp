@@ -6,12 +6,11 @@
 // 1..max_k settings and every fusion method (or those options.methods names):
 // the sharpness, RMS contrast and difference with background of each fused
 // image, relative to the same object's frame under the static setting (every
-// LED at full level). The
-// background a fused image is compared with is the same fusion of the
-// settings' backgrounds, as `vkfuse run` does. Then the paper's analysis:
-// which method most often improves every metric at once, the best pairs,
-// the greedy best sequence per metric, and the pairing of the static setting
-// with each other one.
+// LED at full level). The background a fused image is compared with is the
+// same fusion of the settings' backgrounds, as `vkfuse run` does. Then the
+// paper's analysis: which method most often improves every metric at once,
+// the best pairs, the greedy best sequence per metric, and the pairing of
+// the static setting with each other one.
 #pragma once
 #include <array>
 #include <cstddef>
