@@ -30,6 +30,15 @@ uint linear_index(uint group_size) {
     return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * group_size + gl_LocalInvocationID.x;
 }
 
+// The fused sensor of a fusing kernel's slot (workgroup z / C). A cached
+// fusion (vk/cached_fusion.hpp) fuses sensors that come in blocks of
+// `period`, one per source, and reaches each group of sources' coefficients
+// through a dispatch of its own: slot i is member first + i % count of block
+// i / count. A plan's dispatch covers every sensor (first 0, count = period).
+uint group_sensor(uint slot, uint first, uint count, uint period) {
+    return slot / count * period + first + slot % count;
+}
+
 // Index reflection about the first and last sample without repeating them
 // (OpenCV BORDER_REFLECT_101, "whole-sample symmetric"): -1 -> 1, n -> n-2.
 int reflect101(int i, int n) {

@@ -22,14 +22,18 @@ layout(push_constant, std430) uniform Push {
     uint channels;
     uint rule;
     uint use_table;
+    uint group_first;  // the fused sensors covered: group_sensor() (common.glsl)
+    uint group_count;
+    uint group_period;
 } pc;
 #include "pyr_up.glsl"
 
 void main() {
     int j = int(gl_GlobalInvocationID.x), i = int(gl_GlobalInvocationID.y);
-    uint z = gl_WorkGroupID.z;  // s * C + c
     if (j >= pc.cw || i >= pc.ch) return;
-    uint s = z / pc.channels, c = z % pc.channels;
+    uint c = gl_WorkGroupID.z % pc.channels;
+    uint s = group_sensor(gl_WorkGroupID.z / pc.channels, pc.group_first, pc.group_count, pc.group_period);
+    uint z = s * pc.channels + c;  // the fused plane
     uint plane_size = uint(pc.width * pc.height);
     RuleState st[4];
     for (uint k = 0u; k < pc.frames; ++k) {

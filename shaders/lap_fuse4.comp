@@ -18,14 +18,18 @@ layout(push_constant, std430) uniform Push {
     uint channels;
     uint rule;
     uint use_table;
+    uint group_first;  // the fused sensors covered: group_sensor() (common.glsl)
+    uint group_count;
+    uint group_period;
 } pc;
 #include "pyr_up4.glsl"
 
 void main() {
     int j = int(gl_GlobalInvocationID.x) * 4, i = int(gl_GlobalInvocationID.y);
-    uint z = gl_WorkGroupID.z;  // s * C + c
     if (j >= pc.cw || i >= pc.ch) return;
-    uint s = z / pc.channels, c = z % pc.channels;
+    uint c = gl_WorkGroupID.z % pc.channels;
+    uint s = group_sensor(gl_WorkGroupID.z / pc.channels, pc.group_first, pc.group_count, pc.group_period);
+    uint z = s * pc.channels + c;  // the fused plane
     uint plane_size = uint(pc.width * pc.height);
     bool second_row = 2 * i + 1 < pc.height;
     // Quads of the outputs: row 2i columns 2j.., 2j+4..; row 2i+1 the same.

@@ -11,7 +11,8 @@
 // Nothing is written inside the top-left skip_w x skip_h corner (a level's
 // approximation that the inverse overwrites). Where rows are whole quads
 // (quads: width, row_stride and plane_stride multiples of 4) an invocation
-// fuses four neighbouring coefficients with plane4 loads and stores.
+// fuses four neighbouring coefficients with plane4 loads and stores. The
+// dispatch covers the fused sensors group_sensor() names (common.glsl).
 layout(local_size_x = 16, local_size_y = 16) in;
 #define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst) X(2, uint, table) X(3, plane4_t, src4) X(4, plane4_t, dst4)
 #include "bindings.glsl"
@@ -31,6 +32,9 @@ layout(push_constant, std430) uniform Push {
     int skip_w;
     int skip_h;
     uint quads;
+    uint group_first;
+    uint group_count;
+    uint group_period;
 } pc;
 
 uint source_plane(uint s, uint k, uint c) {
@@ -43,11 +47,12 @@ bool base_at(int x, int y) { return x < pc.split_w && y < pc.split_h; }
 
 void main() {
     int x = int(gl_GlobalInvocationID.x) * (pc.quads != 0u ? 4 : 1), y = int(gl_GlobalInvocationID.y);
-    uint z = gl_WorkGroupID.z;  // s * C + c
     if (x >= pc.width || y >= pc.height) return;
     int last = pc.quads != 0u ? x + 3 : x;
     if (last < pc.skip_w && y < pc.skip_h) return;
-    uint s = z / pc.channels, c = z % pc.channels;
+    uint c = gl_WorkGroupID.z % pc.channels;
+    uint s = group_sensor(gl_WorkGroupID.z / pc.channels, pc.group_first, pc.group_count, pc.group_period);
+    uint z = s * pc.channels + c;  // the fused plane
     uint offset = uint(y * pc.row_stride + x);
     if (pc.quads != 0u && base_at(x, y) == base_at(last, y)) {
         uint rule = base_at(x, y) ? pc.base_rule : pc.detail_rule;

@@ -17,6 +17,9 @@ namespace vkfuse::test {
 namespace {
 
 constexpr int kFrames = 5;
+// Room for one source's planes of kFrames 48 x 64 frames (at most 49 x 65
+// samples each, 3 channels), not two.
+constexpr std::uint64_t kOneSourceBytes = std::uint64_t(kFrames) * 3 * 49 * 65 * 4;
 
 struct Sources {
     int height, width;
@@ -100,6 +103,10 @@ struct Case {
     Wavelet wavelet;
     WaveletMode mode;
     int height, width;
+    // Limits each group of sources' buffers: small enough for one source per
+    // group, so that every source's coefficients sit in a group of their own
+    // (0: the device's, one group).
+    std::uint64_t max_binding_bytes = 0;
 };
 
 class CachedFusionTest : public VulkanTest, public ::testing::WithParamInterface<Case> {};
@@ -114,7 +121,8 @@ TEST_P(CachedFusionTest, MatchesPlansForEveryCombination) {
     spec.mode = c.mode;
     spec.levels = 2;
     const Sources s(c.height, c.width, 2);
-    vk::CachedFusion cached(ctx(), {spec, c.height, c.width, 3, 1 + s.object_count, kFrames}, s.all());
+    vk::CachedFusion cached(ctx(), {spec, c.height, c.width, 3, 1 + s.object_count, kFrames, c.max_binding_bytes},
+                            s.all());
     for (std::size_t k : {2u, 3u}) {
         const auto combinations = subsets(k);
         const auto got = cached.score(combinations);
@@ -139,7 +147,15 @@ INSTANTIATE_TEST_SUITE_P(Methods, CachedFusionTest,
                                            Case{Method::Wavelet, Wavelet::Db2, WaveletMode::Periodization, 29, 37},
                                            Case{Method::Wavelet, Wavelet::Bior22, WaveletMode::Symmetric, 30, 44},
                                            Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 48, 64},
-                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 29, 37}));
+                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 29, 37},
+                                           Case{Method::Wavelet, Wavelet::Bior44, WaveletMode::Periodization, 48, 64,
+                                                kOneSourceBytes},
+                                           Case{Method::Wavelet, Wavelet::Bior22, WaveletMode::Symmetric, 30, 44,
+                                                kOneSourceBytes},
+                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 48, 64,
+                                                kOneSourceBytes},
+                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 29, 37,
+                                                kOneSourceBytes}));
 
 TEST_F(CachedFusionTest, RefusesWhatItCannotFuse) {
     FusionSpec spec;

@@ -32,10 +32,10 @@ TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
 }
 
 TEST(KernelInterface, SharedPushBlocksDeclareTheirBuffersToo) {
-    // rule_fuse.comp: 5 buffers, fourteen 4-byte scalars.
+    // rule_fuse.comp: 5 buffers, seventeen 4-byte scalars.
     EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).bindings, 5u);
-    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).push_bytes, 14u * 4u);
-    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse_addr")).push_bytes, 5u * 8u + 14u * 4u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse")).push_bytes, 17u * 4u);
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("rule_fuse_addr")).push_bytes, 5u * 8u + 17u * 4u);
     // dwt_forward.comp's block comes from line.glsl: src, dst, scheme, regions;
     // thirteen scalars.
     const vk::KernelInterface line = vk::reflect_kernel(vk::shader_spirv("dwt_forward"));

@@ -1,6 +1,7 @@
 #include "vk/cached_fusion.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -31,14 +32,54 @@ PlanConfig base_config(const CachedFusionShape& s) {
     return c;
 }
 
+// cfg.sensors sources' frames (source-major) decomposed in one submit; the
+// buffers holding the levels are moved into `keep`.
+CachedSources decompose(Context::Impl& ctx, const PlanConfig& cfg, std::uint32_t first,
+                        std::span<const FrameView> images, std::vector<Buffer>& keep) {
+    // Every frame of the group in one submit, as float32: 8-bit ones divided
+    // by 255 here as frames.glsl would (one correctly rounded division either way).
+    const std::uint64_t frame_floats = std::uint64_t(cfg.height) * cfg.width * cfg.channels;
+    Buffer upload(ctx, frame_floats * images.size() * 4, MemoryUse::Upload);
+    auto* dst = static_cast<float*>(upload.mapped());
+    for (const FrameView& v : images) {
+        if (v.type == PixelType::F32) {
+            std::memcpy(dst, v.data, frame_floats * 4);
+        } else {
+            const auto* bytes = static_cast<const std::uint8_t*>(v.data);
+            for (std::uint64_t i = 0; i < frame_floats; ++i) dst[i] = float(bytes[i]) / 255.0f;
+        }
+        dst += frame_floats;
+    }
+    std::vector<Buffer> buffers;
+    CachedSources group{first, std::uint32_t(cfg.sensors), {}};
+    {
+        DescriptorSets sets(ctx);
+        CommandSlot slot(ctx, 0);
+        Recorder rec(ctx, slot.recording_target(), slot.queries(), "", sets,
+                     ctx.device_addresses_only || needs_device_addresses(cfg, ctx.properties.limits));
+        GraphBuilder g{ctx, cfg, rec, buffers, 0, {&upload}};
+        FrameSource input(g, upload.span());
+        group.levels = cfg.fusion.method == Method::Wavelet ? record_wavelet_decompose(g, input)
+                                                            : record_laplacian_decompose(g, input);
+        rec.finish();
+        slot.submit_and_wait();
+    }
+    for (Buffer& b : buffers)
+        if (std::any_of(group.levels.begin(), group.levels.end(),
+                        [&](const PlaneView& v) { return v.addr >= b.address() && v.addr < b.address() + b.size(); }))
+            keep.push_back(std::move(b));
+    return group;
+}
+
 }  // namespace
 
-// The coefficient cache: the buffers of the decomposition that hold its
-// levels (its scratch dropped), and the levels as the method's recorders
-// view them.
+// The coefficient cache: the buffers of the decompositions that hold their
+// levels (their scratch dropped), and per group of sources the levels as the
+// method's recorders view them.
 struct CachedFusion::Cache {
     std::vector<Buffer> buffers;
-    std::vector<PlaneView> levels;
+    std::vector<CachedSources> groups;
+    std::vector<std::uint32_t> first_of;  // per source: its group's first source
 };
 
 // One recorded cycle for combinations of k frames: batch() combinations of
@@ -73,7 +114,6 @@ CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std
                                                     " images for " + std::to_string(shape.sources) + " sources x " +
                                                     std::to_string(shape.frames) + " frames");
     validate(shape.fusion, shape.height, shape.width, shape.channels, 2);
-    const std::uint64_t frame_floats = std::uint64_t(shape.height) * shape.width * shape.channels;
     for (std::size_t i = 0; i < images.size(); ++i) {
         const FrameView& v = images[i];
         if (v.height != shape.height || v.width != shape.width || v.channels != shape.channels)
@@ -83,51 +123,37 @@ CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std
                                                         std::to_string(shape.height) + "x" +
                                                         std::to_string(shape.channels));
     }
-    // Every frame in one submit, as float32: 8-bit ones divided by 255 here
-    // as frames.glsl would (one correctly rounded division either way).
-    Buffer upload(ctx_, frame_floats * images.size() * 4, MemoryUse::Upload);
-    auto* dst = static_cast<float*>(upload.mapped());
-    for (const FrameView& v : images) {
-        if (v.type == PixelType::F32) {
-            std::memcpy(dst, v.data, frame_floats * 4);
-        } else {
-            const auto* bytes = static_cast<const std::uint8_t*>(v.data);
-            for (std::uint64_t i = 0; i < frame_floats; ++i) dst[i] = float(bytes[i]) / 255.0f;
-        }
-        dst += frame_floats;
-    }
+    // Sources are decomposed in groups whose buffers one descriptor binds
+    // whole, so that the cycles' kernels reach the cache through bindings
+    // (on lavapipe about 1.5x faster than through device addresses). Where
+    // not even one source's frames fit, one group of every source, reached
+    // through device addresses.
     PlanConfig cfg = base_config(shape);
-    cfg.sensors = shape.sources;
+    cfg.sensors = 1;
     cfg.frames = shape.frames;
     cfg.metrics = {};
     cfg.input = PixelType::F32;
-    std::vector<Buffer> buffers;
-    {
-        DescriptorSets sets(ctx_);
-        CommandSlot slot(ctx_, 0);
-        Recorder rec(ctx_, slot.recording_target(), slot.queries(), "", sets,
-                     ctx_.device_addresses_only || needs_device_addresses(cfg, ctx_.properties.limits));
-        GraphBuilder g{ctx_, cfg, rec, buffers, 0, {&upload}};
-        FrameSource input(g, upload.span());
-        cache_->levels = shape.fusion.method == Method::Wavelet ? record_wavelet_decompose(g, input)
-                                                                : record_laplacian_decompose(g, input);
-        rec.finish();
-        slot.submit_and_wait();
+    const double binding = double(shape.max_binding_bytes ? std::min<std::uint64_t>(shape.max_binding_bytes,
+                                                                                  ctx_.properties.limits.maxStorageBufferRange)
+                                                          : ctx_.properties.limits.maxStorageBufferRange);
+    const double per_source = largest_buffer_bytes(cfg);
+    const int fit = per_source <= binding ? int(std::min<double>(shape.sources, std::floor(binding / per_source))) : 0;
+    const int group_size = fit > 0 ? fit : shape.sources;
+    for (int first = 0; first < shape.sources; first += group_size) {
+        const int count = std::min(group_size, shape.sources - first);
+        cfg.sensors = count;
+        const std::size_t from = std::size_t(first) * std::size_t(shape.frames);
+        cache_->groups.push_back(decompose(ctx_, cfg, std::uint32_t(first),
+                                           images.subspan(from, std::size_t(count) * std::size_t(shape.frames)),
+                                           cache_->buffers));
+        cache_->first_of.insert(cache_->first_of.end(), std::size_t(count), std::uint32_t(first));
     }
-    std::uint64_t largest = 0;
-    for (Buffer& b : buffers)
-        if (std::any_of(cache_->levels.begin(), cache_->levels.end(),
-                        [&](const PlaneView& v) { return v.addr >= b.address() && v.addr < b.address() + b.size(); })) {
-            largest = std::max<std::uint64_t>(largest, b.size());
-            cache_->buffers.push_back(std::move(b));
-        }
-    // A cycle's largest buffer: the cache's, or one plane set of its fused
-    // sensors (as a plan's of that many sensors and one frame).
+    // A cycle's largest buffer: one plane set of its fused sensors (as a
+    // plan's of that many sensors and one frame).
     PlanConfig fused = base_config(shape);
     fused.sensors = int(batch()) * shape.sources;
     fused.frames = 1;
-    addressed_ = ctx_.device_addresses_only || largest > ctx_.properties.limits.maxStorageBufferRange ||
-                 needs_device_addresses(fused, ctx_.properties.limits);
+    addressed_ = ctx_.device_addresses_only || fit == 0 || needs_device_addresses(fused, ctx_.properties.limits);
 }
 
 CachedFusion::~CachedFusion() = default;
@@ -158,9 +184,10 @@ CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
     std::vector<const Buffer*> fixed{&gr.table, &gr.readback};
     for (const Buffer& b : cache_->buffers) fixed.push_back(&b);
     GraphBuilder g{ctx_, gr.cfg, rec, gr.buffers, 0, fixed};
+    const std::uint32_t sources = std::uint32_t(shape_.sources);
     const VkDeviceAddress fused = shape_.fusion.method == Method::Wavelet
-                                      ? record_wavelet_cached(g, cache_->levels, gr.table.span())
-                                      : record_laplacian_cached(g, cache_->levels, gr.table.span());
+                                      ? record_wavelet_cached(g, cache_->groups, sources, gr.table.span())
+                                      : record_laplacian_cached(g, cache_->groups, sources, gr.table.span());
     record_metrics(g, fused, fused, gr.readback.span(), std::nullopt, std::uint32_t(shape_.sources));
     rec.finish();
     graphs_.splice(graphs_.end(), fresh);
@@ -190,7 +217,8 @@ std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vecto
             const auto& c = combinations[first + std::min(b, count - 1)];
             for (std::size_t s = 0; s < S; ++s)
                 for (std::size_t i = 0; i < k; ++i)
-                    table[(b * S + s) * k + i] = std::uint32_t(s * std::size_t(shape_.frames) + c[i]);
+                    table[(b * S + s) * k + i] =
+                        std::uint32_t((s - cache_->first_of[s]) * std::size_t(shape_.frames) + c[i]);
         }
         gr.slot->submit_and_wait();
         const float* partials = static_cast<const float*>(gr.readback.mapped());

@@ -7,12 +7,18 @@
 // coefficient cache on the device, and a cycle fuses a batch of combinations
 // straight from it:
 //
-//   construction, one submit:  every source's frames --dwt rows, columns
-//                              (Laplacian: unpack, pyrDown chain)--> cache[level]
-//   score(), per batch:        table (combination b, source s -> k frames)
-//                                cache --rule_fuse (lap_fuse) by table--> fused levels
+//   construction, a submit     the group's frames --dwt rows, columns
+//   per group of sources:      (Laplacian: unpack, pyrDown chain)--> cache[group][level]
+//   score(), per batch:        table (combination b, source s -> k frames of s's group)
+//                                cache[group] --rule_fuse (lap_fuse) by table,
+//                                               a dispatch per group--> fused levels
 //                                --idwt (collapse)--> fused planes (b*S + s)
 //                                --metrics, background = source 0's--> partials
+//
+// The sources are decomposed in groups, each group's levels in buffers one
+// descriptor binds whole, so that a cycle reaches the cache through bindings
+// rather than device addresses even when the whole cache is larger than
+// maxStorageBufferRange (a QVGA study of 23 settings and 9 objects is).
 //
 // Source 0 is the background: every other source's background_diff is taken
 // against source 0's fusion of the same combination, as a plan whose
@@ -36,6 +42,9 @@ struct CachedFusionShape {
     int height = 0, width = 0, channels = 3;
     int sources = 0;       // source 0 the background
     int frames = 0;        // per source: the settings
+    // The most bytes one group's buffers may hold; 0: the device's
+    // maxStorageBufferRange. Less forces smaller groups (tests).
+    std::uint64_t max_binding_bytes = 0;
 };
 
 class CachedFusion {

@@ -34,11 +34,14 @@ DeviceSpan GraphBuilder::span(VkDeviceAddress address, VkDeviceSize bytes) const
     throw Error(ErrorKind::Device, "internal: no plan buffer holds the address");
 }
 
-bool needs_device_addresses(const PlanConfig& c, const VkPhysicalDeviceLimits& limits) {
+double largest_buffer_bytes(const PlanConfig& c) {
     // The largest buffers: the frames as uploaded, and one plane set of every
     // frame (a periodization block is up to one sample wider and taller).
-    const double plane_set = double(c.sensors) * c.frames * c.channels * (double(c.height) + 1) * (double(c.width) + 1);
-    return plane_set * 4 > double(limits.maxStorageBufferRange);
+    return double(c.sensors) * c.frames * c.channels * (double(c.height) + 1) * (double(c.width) + 1) * 4;
+}
+
+bool needs_device_addresses(const PlanConfig& c, const VkPhysicalDeviceLimits& limits) {
+    return largest_buffer_bytes(c) > double(limits.maxStorageBufferRange);
 }
 
 PushConstants FrameSource::frame_fields() const {

@@ -1,6 +1,7 @@
 // Laplacian pyramid fusion (docs/spec.md): pyrDown chain per frame, level-by-level
 // fusion of G_l - pyrUp(G_{l+1}) (the Laplacian coefficient is formed inside
 // the fusion kernel, never stored), then collapse from the top, in place.
+#include <span>
 #include <vector>
 
 #include "vk/plan_impl.hpp"
@@ -50,39 +51,55 @@ void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
     g.rec.mark("pyr_down");
 }
 
-// Each level's fusion across the frames (with a table: the frames it names
-// among the pyramids'), then the collapse from the top, in place; returns
-// the fused planes.
-VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::optional<DeviceSpan> table) {
+// Every frame's G_0 .. G_L as the planes a cache keeps.
+std::vector<PlaneView> levels_of(const std::vector<Level>& lv) {
+    std::vector<PlaneView> out;
+    for (const Level& l : lv) out.push_back({l.gauss, int(l.w), l.w * l.h});
+    return out;
+}
+
+// Each level's fusion across the frames, one dispatch per group of sources
+// (a plan: one, its own pyramids; a cache: each group's, frames named by the
+// table), then the collapse from the top, in place; returns the fused planes.
+VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::span<const CachedSources> from,
+                                  const SensorGroup& whole, std::optional<DeviceSpan> table) {
     const std::size_t L = lv.size() - 1;
     for (std::size_t l = 0; l <= L; ++l) {
         auto& c = lv[l];
-        const bool top = l == L;
-        const Level& coarse = top ? c : lv[l + 1];
         c.fused = g.planes(std::uint64_t(g.planes_out()) * c.w * c.h);
-        if (top) {  // the base rule on G_L itself
-            const PlaneView top_in{c.gauss, int(c.w), c.w * c.h}, top_out{c.fused, int(c.w), c.w * c.h};
-            record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h), table});
-            continue;
+    }
+    for (const CachedSources& sources : from) {
+        // whole: a plan's (every sensor), or a cache's blocks of sources.
+        const SensorGroup group = whole.count ? SensorGroup{sources.first, sources.count, whole.period} : whole;
+        for (std::size_t l = 0; l <= L; ++l) {
+            const auto& c = lv[l];
+            const VkDeviceAddress gauss = sources.levels[l].addr;
+            if (l == L) {  // the base rule on G_L itself
+                const PlaneView top_in{gauss, int(c.w), c.w * c.h}, top_out{c.fused, int(c.w), c.w * c.h};
+                record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h), table, 0, 0, group});
+                continue;
+            }
+            // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the same scalars.
+            const Level& coarse = lv[l + 1];
+            const PushConstants scalars = PushConstants()
+                                              .i32(int(c.w))
+                                              .i32(int(c.h))
+                                              .i32(int(coarse.w))
+                                              .i32(int(coarse.h))
+                                              .u32(std::uint32_t(g.cfg.frames))
+                                              .u32(std::uint32_t(g.cfg.channels))
+                                              .u32(rule_id(g.cfg.fusion.detail_rule))
+                                              .u32(table ? 1 : 0)
+                                              .append(group.push(g.cfg));
+            const DeviceSpan src = g.span(gauss), up = g.span(sources.levels[l + 1].addr), dst = g.span(c.fused);
+            const DeviceSpan frames = table ? *table : src;
+            if (c.w % 8 == 0)  // 2 x 8 outputs per invocation, plane4 loads and stores
+                g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars, groups(coarse.w / 4, 16),
+                               groups(coarse.h, 16), group.planes(g.cfg));
+            else  // 2 x 2 outputs per invocation
+                g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars, groups(coarse.w, 16), groups(coarse.h, 16),
+                               group.planes(g.cfg));
         }
-        // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the same scalars.
-        const PushConstants scalars = PushConstants()
-                                          .i32(int(c.w))
-                                          .i32(int(c.h))
-                                          .i32(int(coarse.w))
-                                          .i32(int(coarse.h))
-                                          .u32(std::uint32_t(g.cfg.frames))
-                                          .u32(std::uint32_t(g.cfg.channels))
-                                          .u32(rule_id(g.cfg.fusion.detail_rule))
-                                          .u32(table ? 1 : 0);
-        const DeviceSpan src = g.span(c.gauss), up = g.span(coarse.gauss), dst = g.span(c.fused);
-        const DeviceSpan frames = table ? *table : src;
-        if (c.w % 8 == 0)  // 2 x 8 outputs per invocation, plane4 loads and stores
-            g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars, groups(coarse.w / 4, 16),
-                           groups(coarse.h, 16), g.planes_out());
-        else  // 2 x 2 outputs per invocation
-            g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars, groups(coarse.w, 16), groups(coarse.h, 16),
-                           g.planes_out());
     }
     g.rec.mark("lap_fuse");
     for (std::size_t i = L; i-- > 0;) {
@@ -113,22 +130,22 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
     std::vector<Level> lv = level_sizes(g.cfg);
     lv[0].gauss = frames.planes();
     pyr_down_chain(g, lv);
-    return fuse_and_collapse(g, lv, std::nullopt);
+    const CachedSources own{0, std::uint32_t(g.cfg.sensors), levels_of(lv)};
+    return fuse_and_collapse(g, lv, {&own, 1}, {}, std::nullopt);
 }
 
 std::vector<PlaneView> record_laplacian_decompose(GraphBuilder& g, FrameSource& frames) {
     std::vector<Level> lv = level_sizes(g.cfg);
     lv[0].gauss = frames.planes();
     pyr_down_chain(g, lv);
-    std::vector<PlaneView> out;
-    for (const Level& l : lv) out.push_back({l.gauss, int(l.w), l.w * l.h});
-    return out;
+    return levels_of(lv);
 }
 
-VkDeviceAddress record_laplacian_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table) {
+VkDeviceAddress record_laplacian_cached(GraphBuilder& g, std::span<const CachedSources> groups, std::uint32_t sources,
+                                        DeviceSpan table) {
     std::vector<Level> lv = level_sizes(g.cfg);
-    for (std::size_t l = 0; l < lv.size(); ++l) lv[l].gauss = levels[l].addr;
-    return fuse_and_collapse(g, lv, table);
+    const SensorGroup whole{0, sources, sources};
+    return fuse_and_collapse(g, lv, groups, whole, table);
 }
 
 }  // namespace vkfuse::vk

@@ -6,6 +6,18 @@
 
 namespace vkfuse::vk {
 
+PushConstants SensorGroup::push(const PlanConfig& cfg) const {
+    const SensorGroup w = in(cfg);
+    if (w.first + w.count > w.period || cfg.sensors % int(w.period) != 0)
+        throw Error(ErrorKind::Device, "internal: a sensor group outside its plan's sensors");
+    return PushConstants().u32(w.first).u32(w.count).u32(w.period);
+}
+
+std::uint32_t SensorGroup::planes(const PlanConfig& cfg) const {
+    const SensorGroup w = in(cfg);
+    return std::uint32_t(cfg.sensors) / w.period * w.count * std::uint32_t(cfg.channels);
+}
+
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
     if (r.src.row_stride != r.dst.row_stride || r.src.plane_stride != r.dst.plane_stride)
         throw Error(ErrorKind::Device, "internal: rule_fuse takes one set of strides for its source and result");
@@ -27,8 +39,10 @@ void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
                        .u32(r.table ? 1 : 0)
                        .i32(r.skip_w)
                        .i32(r.skip_h)
-                       .u32(quads),
-                   groups(std::uint32_t(quads ? r.width / 4 : r.width), 16), groups(std::uint32_t(r.height), 16), g.planes_out());
+                       .u32(quads)
+                       .append(r.group.push(g.cfg)),
+                   groups(std::uint32_t(quads ? r.width / 4 : r.width), 16), groups(std::uint32_t(r.height), 16),
+                   r.group.planes(g.cfg));
 }
 
 }  // namespace vkfuse::vk

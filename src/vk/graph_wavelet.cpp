@@ -190,19 +190,22 @@ public:
         return levels;
     }
 
-    // The plan's sensors fused from decompose()'s blocks: sensor s's frame k
-    // is block table[s*K + k] of every level.
-    VkDeviceAddress fuse_cached(const std::vector<PlaneView>& levels, DeviceSpan table) {
+    // The plan's sensors (blocks of `sources`) fused from decompose()'s
+    // blocks of each group of sources: sensor j's frame k is block
+    // table[j*K + k] of its group's levels.
+    VkDeviceAddress fuse_cached(std::span<const CachedSources> groups, std::uint32_t sources, DeviceSpan table) {
         std::vector<PlaneView> fused;
-        for (std::size_t l = 0; l < shapes_.size(); ++l) {
-            const auto& s = shapes_[l];
-            const bool deepest = l + 1 == shapes_.size();
-            const PlaneView f{g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)};
-            // Above the deepest level the approximation corner is the inverse's to write.
-            record_rule_fuse(g_, {levels[l], f, s.bw, s.bh, deepest ? s.cw : 0, deepest ? s.ch : 0, table,
-                                  deepest ? 0 : s.cw, deepest ? 0 : s.ch});
-            fused.push_back(f);
-        }
+        for (const auto& s : shapes_)
+            fused.push_back({g_.planes(std::uint64_t(g_.planes_out()) * s.bh * s.bw), s.bw, std::uint32_t(s.bh * s.bw)});
+        for (const CachedSources& group : groups)
+            for (std::size_t l = 0; l < shapes_.size(); ++l) {
+                const auto& s = shapes_[l];
+                const bool deepest = l + 1 == shapes_.size();
+                // Above the deepest level the approximation corner is the inverse's to write.
+                record_rule_fuse(g_, {group.levels[l], fused[l], s.bw, s.bh, deepest ? s.cw : 0, deepest ? s.ch : 0,
+                                      table, deepest ? 0 : s.cw, deepest ? 0 : s.ch,
+                                      SensorGroup{group.first, group.count, sources}});
+            }
         g_.rec.mark("fuse");
         return invert(fused);
     }
@@ -408,8 +411,9 @@ std::vector<PlaneView> record_wavelet_decompose(GraphBuilder& g, FrameSource& in
     return WaveletGraph(g).decompose(input);
 }
 
-VkDeviceAddress record_wavelet_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table) {
-    return WaveletGraph(g).fuse_cached(levels, table);
+VkDeviceAddress record_wavelet_cached(GraphBuilder& g, std::span<const CachedSources> groups, std::uint32_t sources,
+                                      DeviceSpan table) {
+    return WaveletGraph(g).fuse_cached(groups, sources, table);
 }
 
 }  // namespace vkfuse::vk

@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "vk/buffer.hpp"
@@ -54,6 +55,8 @@ struct GraphBuilder {
 // (maxStorageBufferRange): such a plan runs the kernels' device-address
 // variants.
 bool needs_device_addresses(const PlanConfig& cfg, const VkPhysicalDeviceLimits& limits);
+// At most the bytes of a plan's largest buffer (proportional to its sensors).
+double largest_buffer_bytes(const PlanConfig& cfg);
 
 // A cycle's input: the frames as uploaded (S*K frames, HWC, 8-bit or
 // float32; shaders/frames.glsl) and, on first request, the same samples
@@ -96,18 +99,33 @@ struct PlaneView {
     std::uint32_t plane_stride = 0;
 };
 
+// The fused sensors one fusing dispatch covers (group_sensor in
+// shaders/common.glsl): of sensors in blocks of `period`, members first ..
+// first + count - 1 of every block. count 0: every sensor of the plan.
+struct SensorGroup {
+    std::uint32_t first = 0, count = 0, period = 0;
+    SensorGroup in(const PlanConfig& cfg) const {
+        return count ? *this : SensorGroup{0, std::uint32_t(cfg.sensors), std::uint32_t(cfg.sensors)};
+    }
+    // The group's push fields; the dispatch's z: its sensors times channels.
+    PushConstants push(const PlanConfig& cfg) const;
+    std::uint32_t planes(const PlanConfig& cfg) const;
+};
+
 // A width x height region of S*K*C source planes (plane (s*K + k)*C + c) and
 // of the S*C fused planes (s*C + c), both with the same strides. Inside its
 // top-left split_w x split_h corner the base rule applies, the detail rule
 // elsewhere. With a table (S*K uint32), fused sensor s's frame k is source
 // frame table[s*K + k] (planes table[s*K + k]*C + c) of any number of them.
-// The top-left skip_w x skip_h corner is left unwritten.
+// The top-left skip_w x skip_h corner is left unwritten. Only the fused
+// sensors of `group` are written (their table frames among src's planes).
 struct RuleFuseRegion {
     PlaneView src, dst;
     int width = 0, height = 0;
     int split_w = 0, split_h = 0;
     std::optional<DeviceSpan> table = std::nullopt;
     int skip_w = 0, skip_h = 0;
+    SensorGroup group = {};
 };
 void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& region);
 
@@ -117,13 +135,21 @@ void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& region);
 // view of the S*K*C planes of one level of every frame (plane f*C + c; a
 // wavelet level holds each frame's coefficient block, approximation
 // top-left; a Laplacian level its Gaussian G_l, G_0 the frame itself).
-// *_cached fuses the plan's S sensors from such levels, sensor s's frame k
-// being frame table[s*K + k] there (S*K uint32), and returns the fused
-// planes as record_* does.
+// A cache may be decomposed in groups of its sources, each group's planes
+// in buffers one descriptor can bind (CachedSources). *_cached fuses the
+// plan's sensors, blocks of `sources` (sensor b*sources + s fusing source s),
+// from those levels, sensor j's frame k being frame table[j*K + k] among its
+// source group's (S*K uint32), and returns the fused planes as record_* does.
+struct CachedSources {
+    std::uint32_t first = 0, count = 0;  // sources first .. first + count - 1
+    std::vector<PlaneView> levels;       // *_decompose's, of these sources' frames alone
+};
 std::vector<PlaneView> record_wavelet_decompose(GraphBuilder& g, FrameSource& input);
-VkDeviceAddress record_wavelet_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table);
+VkDeviceAddress record_wavelet_cached(GraphBuilder& g, std::span<const CachedSources> groups, std::uint32_t sources,
+                                      DeviceSpan table);
 std::vector<PlaneView> record_laplacian_decompose(GraphBuilder& g, FrameSource& input);
-VkDeviceAddress record_laplacian_cached(GraphBuilder& g, const std::vector<PlaneView>& levels, DeviceSpan table);
+VkDeviceAddress record_laplacian_cached(GraphBuilder& g, std::span<const CachedSources> groups, std::uint32_t sources,
+                                        DeviceSpan table);
 
 // Workgroups of the metric pass per sensor: each writes kMetricPartialFloats
 // floats (shaders/metrics.comp).
