@@ -4,6 +4,7 @@
 // background frames as its background; bad combinations get one line each.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -20,6 +21,7 @@ constexpr int kFrames = 5;
 // Room for one source's planes of kFrames 48 x 64 frames (at most 49 x 65
 // samples each, 3 channels), not two.
 constexpr std::uint64_t kOneSourceBytes = std::uint64_t(kFrames) * 3 * 49 * 65 * 4;
+constexpr std::uint64_t kNoSourceFits = 1;
 
 struct Sources {
     int height, width;
@@ -105,11 +107,28 @@ struct Case {
     int height, width;
     // Limits each group of sources' buffers: small enough for one source per
     // group, so that every source's coefficients sit in a group of their own
-    // (0: the device's, one group).
+    // (0: the device's, one group; kNoSourceFits: one group of every source,
+    // reached through device addresses).
     std::uint64_t max_binding_bytes = 0;
+    bool addressed = false;  // in a context whose kernels all use device addresses
 };
 
 class CachedFusionTest : public VulkanTest, public ::testing::WithParamInterface<Case> {};
+
+// e.g. wavelet_bior44_periodization_48x64_one_source_groups_addressed
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+    const Case& c = info.param;
+    std::string name(to_string(c.method));
+    if (c.method == Method::Wavelet) name += "_" + std::string(to_string(c.wavelet)) + "_" + std::string(to_string(c.mode));
+    name += "_" + std::to_string(c.height) + "x" + std::to_string(c.width);
+    if (c.max_binding_bytes == kOneSourceBytes) name += "_small_groups";
+    if (c.max_binding_bytes == kNoSourceFits) name += "_one_addressed_group";
+    if (c.addressed) name += "_addressed";
+    std::string out;
+    for (char ch : name)
+        if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_') out += ch;
+    return out;
+}
 
 // Every 2- and 3-subset of five frames (ten each: a full batch and a short
 // one for three sources), as the plans give them.
@@ -121,8 +140,8 @@ TEST_P(CachedFusionTest, MatchesPlansForEveryCombination) {
     spec.mode = c.mode;
     spec.levels = 2;
     const Sources s(c.height, c.width, 2);
-    vk::CachedFusion cached(ctx(), {spec, c.height, c.width, 3, 1 + s.object_count, kFrames, c.max_binding_bytes},
-                            s.all());
+    vk::CachedFusion cached(c.addressed ? addressed_context() : ctx(),
+                            {spec, c.height, c.width, 3, 1 + s.object_count, kFrames, c.max_binding_bytes}, s.all());
     for (std::size_t k : {2u, 3u}) {
         const auto combinations = subsets(k);
         const auto got = cached.score(combinations);
@@ -155,7 +174,16 @@ INSTANTIATE_TEST_SUITE_P(Methods, CachedFusionTest,
                                            Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 48, 64,
                                                 kOneSourceBytes},
                                            Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 29, 37,
-                                                kOneSourceBytes}));
+                                                kOneSourceBytes},
+                                           Case{Method::Wavelet, Wavelet::Bior44, WaveletMode::Periodization, 48, 64,
+                                                kNoSourceFits},
+                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 48, 64,
+                                                kNoSourceFits},
+                                           Case{Method::Wavelet, Wavelet::Bior22, WaveletMode::Symmetric, 30, 44,
+                                                kOneSourceBytes, true},
+                                           Case{Method::Laplacian, Wavelet::Haar, WaveletMode::Periodization, 29, 37,
+                                                kOneSourceBytes, true}),
+                         case_name);
 
 TEST_F(CachedFusionTest, RefusesWhatItCannotFuse) {
     FusionSpec spec;

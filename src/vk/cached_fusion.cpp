@@ -32,8 +32,8 @@ PlanConfig base_config(const CachedFusionShape& s) {
     return c;
 }
 
-// cfg.sensors sources' frames (source-major) decomposed in one submit; the
-// buffers holding the levels are moved into `keep`.
+// The frames (source-major) of cfg.sensors sources from `first` on,
+// decomposed in one submit; the buffers holding the levels move into `keep`.
 CachedSources decompose(Context::Impl& ctx, const PlanConfig& cfg, std::uint32_t first,
                         std::span<const FrameView> images, std::vector<Buffer>& keep) {
     // Every frame of the group in one submit, as float32: 8-bit ones divided
@@ -125,9 +125,9 @@ CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std
     }
     // Sources are decomposed in groups whose buffers one descriptor binds
     // whole, so that the cycles' kernels reach the cache through bindings
-    // (on lavapipe about 1.5x faster than through device addresses). Where
-    // not even one source's frames fit, one group of every source, reached
-    // through device addresses.
+    // (the cheaper way to memory: bindings.glsl). Where not even one
+    // source's frames fit, one group of every source, reached through
+    // device addresses.
     PlanConfig cfg = base_config(shape);
     cfg.sensors = 1;
     cfg.frames = shape.frames;

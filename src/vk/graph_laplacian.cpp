@@ -58,19 +58,20 @@ std::vector<PlaneView> levels_of(const std::vector<Level>& lv) {
     return out;
 }
 
-// Each level's fusion across the frames, one dispatch per group of sources
-// (a plan: one, its own pyramids; a cache: each group's, frames named by the
-// table), then the collapse from the top, in place; returns the fused planes.
+// Each level's fusion across the frames, one dispatch per group of sources,
+// then the collapse from the top, in place; returns the fused planes. A plan
+// (period 0) has one group, its own pyramids, fused for every sensor; a cache
+// has its groups' pyramids, fused for sensors in blocks of `period` sources,
+// frames named by the table.
 VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::span<const CachedSources> from,
-                                  const SensorGroup& whole, std::optional<DeviceSpan> table) {
+                                  std::uint32_t period, std::optional<DeviceSpan> table) {
     const std::size_t L = lv.size() - 1;
     for (std::size_t l = 0; l <= L; ++l) {
         auto& c = lv[l];
         c.fused = g.planes(std::uint64_t(g.planes_out()) * c.w * c.h);
     }
     for (const CachedSources& sources : from) {
-        // whole: a plan's (every sensor), or a cache's blocks of sources.
-        const SensorGroup group = whole.count ? SensorGroup{sources.first, sources.count, whole.period} : whole;
+        const SensorGroup group = period ? SensorGroup{sources.first, sources.count, period} : SensorGroup{};
         for (std::size_t l = 0; l <= L; ++l) {
             const auto& c = lv[l];
             const VkDeviceAddress gauss = sources.levels[l].addr;
@@ -131,7 +132,7 @@ VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& frames) {
     lv[0].gauss = frames.planes();
     pyr_down_chain(g, lv);
     const CachedSources own{0, std::uint32_t(g.cfg.sensors), levels_of(lv)};
-    return fuse_and_collapse(g, lv, {&own, 1}, {}, std::nullopt);
+    return fuse_and_collapse(g, lv, {&own, 1}, 0, std::nullopt);
 }
 
 std::vector<PlaneView> record_laplacian_decompose(GraphBuilder& g, FrameSource& frames) {
@@ -144,8 +145,7 @@ std::vector<PlaneView> record_laplacian_decompose(GraphBuilder& g, FrameSource& 
 VkDeviceAddress record_laplacian_cached(GraphBuilder& g, std::span<const CachedSources> groups, std::uint32_t sources,
                                         DeviceSpan table) {
     std::vector<Level> lv = level_sizes(g.cfg);
-    const SensorGroup whole{0, sources, sources};
-    return fuse_and_collapse(g, lv, groups, whole, table);
+    return fuse_and_collapse(g, lv, groups, sources, table);
 }
 
 }  // namespace vkfuse::vk
