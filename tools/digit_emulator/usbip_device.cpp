@@ -78,30 +78,43 @@ std::vector<int> free_high_speed_ports(const std::string& vhci) {
 
 }  // namespace
 
-UsbipDevice::UsbipDevice(ControlHandler on_control, std::string vhci)
-    : on_control_(std::move(on_control)), trace_(std::getenv("VKFUSE_USBIP_TRACE") != nullptr) {
+UsbipDevice::Link UsbipDevice::attach(const std::string& vhci) {
     int pair[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, pair) != 0)
         throw Error(ErrorKind::Device, std::string("socketpair: ") + std::strerror(errno));
-    fd_ = pair[0];
     // The kernel looks the socket up by its number in this process, and keeps
     // it; another program attaching at the same moment may take the port first.
     std::string refused = "no free high-speed port";
+    int attached = -1;
     for (int port : free_high_speed_ports(vhci)) {
-        std::ofstream attach(vhci + "/attach");
-        attach << port << ' ' << pair[1] << ' ' << ((1u << 16) | unsigned(port + 1)) << ' ' << kUsbSpeedHigh;
-        attach.flush();
-        if (attach) {
-            port_ = port;
+        std::ofstream request(vhci + "/attach");
+        request << port << ' ' << pair[1] << ' ' << ((1u << 16) | unsigned(port + 1)) << ' ' << kUsbSpeedHigh;
+        request.flush();
+        if (request) {
+            attached = port;
             break;
         }
         refused = "port " + std::to_string(port) + " refused the device";
     }
     ::close(pair[1]);
-    if (port_ < 0) {
-        ::close(fd_);
+    if (attached < 0) {
+        ::close(pair[0]);
         throw Error(ErrorKind::Device, vhci + "/attach: " + refused);
     }
+    return {pair[0], attached};
+}
+
+UsbipDevice::UsbipDevice(ControlHandler on_control, std::string vhci)
+    : UsbipDevice(std::move(on_control), attach(vhci)) {}
+
+UsbipDevice::UsbipDevice(ControlHandler on_control, int link_fd)
+    : UsbipDevice(std::move(on_control), Link{link_fd, -1}) {}
+
+UsbipDevice::UsbipDevice(ControlHandler on_control, Link link)
+    : on_control_(std::move(on_control)),
+      trace_(std::getenv("VKFUSE_USBIP_TRACE") != nullptr),
+      fd_(link.fd),
+      port_(link.port) {
     up_ = true;
     thread_ = std::thread([this] { serve(); });
 }
@@ -138,6 +151,17 @@ bool UsbipDevice::serve_one() {
     if (command == kCmdUnlink) {
         const std::uint32_t victim = word(h, 20);
         std::lock_guard lock(mutex_);
+        if (std::int32_t(victim - last_submit_) > 0) {
+            // Not submitted yet: vhci sends the unlinks it has queued after
+            // the submits, so a transfer submitted and cancelled between two
+            // of its passes has its unlink come first. Answered as a
+            // cancellation once the submit arrives, and the submit never
+            // completed: a status 0 now would have vhci give the transfer
+            // back, and its RET_SUBMIT later would find none and drop the device.
+            early_unlinks_[victim] = seqnum;
+            if (trace_) std::fprintf(stderr, "usbip: unlink %u of %u before its submit\n", seqnum, victim);
+            return true;
+        }
         // Still pending: it is cancelled here and never completed. Already
         // completed: the host has (or will have) its RET_SUBMIT.
         std::int32_t status = 0;
@@ -165,6 +189,16 @@ bool UsbipDevice::serve_one() {
     if (!direction_in && length > 0) {
         out_data.resize(length);
         if (!read_all(fd_, out_data.data(), length)) return false;
+    }
+    {
+        std::lock_guard lock(mutex_);
+        last_submit_ = seqnum;
+        if (const auto it = early_unlinks_.find(seqnum); it != early_unlinks_.end()) {
+            send(kRetUnlink, it->second, kUnlinked, {}, 0);
+            if (trace_) std::fprintf(stderr, "usbip: unlink %u of %u: %d\n", it->second, seqnum, kUnlinked);
+            early_unlinks_.erase(it);
+            return true;
+        }
     }
     if (ep == 0) {
         SetupPacket s;

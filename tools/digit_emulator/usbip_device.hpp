@@ -50,6 +50,9 @@ public:
     // sysfs directory) and serves it on a thread of its own; on_control runs
     // there.
     explicit UsbipDevice(ControlHandler on_control, std::string vhci = "/sys/devices/platform/vhci_hcd.0");
+    // Serves a link already connected, taking link_fd: the other end of a
+    // socket pair, which plays vhci (tests). port() is -1.
+    UsbipDevice(ControlHandler on_control, int link_fd);
     ~UsbipDevice();
     UsbipDevice(const UsbipDevice&) = delete;
     UsbipDevice& operator=(const UsbipDevice&) = delete;
@@ -72,6 +75,11 @@ private:
         std::uint32_t seqnum;
         std::size_t length;
     };
+    struct Link {
+        int fd, port;
+    };
+    static Link attach(const std::string& vhci);
+    UsbipDevice(ControlHandler on_control, Link link);
     void serve();
     bool serve_one();
     void send(std::uint32_t command, std::uint32_t seqnum, std::int32_t status, std::span<const std::uint8_t> data,
@@ -85,6 +93,9 @@ private:
     mutable std::mutex mutex_;  // everything below; held while a reply is written
     std::condition_variable arrived_;
     std::map<unsigned, std::deque<Pending>> pending_;  // per IN endpoint, oldest first
+    std::uint32_t last_submit_ = 0;                    // the newest CMD_SUBMIT's seqnum
+    // CMD_UNLINKs that came before the submit they cancel: its seqnum -> theirs.
+    std::map<std::uint32_t, std::uint32_t> early_unlinks_;
     bool up_ = false;
 
     std::mutex unplug_mutex_;
