@@ -78,8 +78,8 @@ CachedSources decompose(Context::Impl& ctx, const PlanConfig& cfg, std::uint32_t
 // method's recorders view them.
 struct CachedFusion::Cache {
     std::vector<Buffer> buffers;
+    // Consecutive sources, every group but the last of the first one's size.
     std::vector<CachedSources> groups;
-    std::vector<std::uint32_t> first_of;  // per source: its group's first source
 };
 
 // One recorded cycle for combinations of k frames: batch() combinations of
@@ -146,7 +146,6 @@ CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std
         cache_->groups.push_back(decompose(ctx_, cfg, std::uint32_t(first),
                                            images.subspan(from, std::size_t(count) * std::size_t(shape.frames)),
                                            cache_->buffers));
-        cache_->first_of.insert(cache_->first_of.end(), std::size_t(count), std::uint32_t(first));
     }
     // A cycle's largest buffer: one plane set of its fused sensors (as a
     // plan's of that many sensors and one frame).
@@ -207,7 +206,7 @@ std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vecto
                                                             std::to_string(shape_.frames));
     }
     Graph& gr = graph_for(k);
-    const std::size_t S = std::size_t(shape_.sources), full = batch();
+    const std::size_t S = std::size_t(shape_.sources), full = batch(), group_size = cache_->groups.front().count;
     const std::size_t n_floats = metric_groups(gr.cfg) * kMetricPartialFloats;
     for (std::size_t first = 0; first < combinations.size(); first += full) {
         const std::size_t count = std::min(full, combinations.size() - first);
@@ -217,8 +216,8 @@ std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vecto
             const auto& c = combinations[first + std::min(b, count - 1)];
             for (std::size_t s = 0; s < S; ++s)
                 for (std::size_t i = 0; i < k; ++i)
-                    table[(b * S + s) * k + i] =
-                        std::uint32_t((s - cache_->first_of[s]) * std::size_t(shape_.frames) + c[i]);
+                    table[(b * S + s) * k + i] =  // frame c[i] of source s among its group's
+                        std::uint32_t(s % group_size * std::size_t(shape_.frames) + c[i]);
         }
         gr.slot->submit_and_wait();
         const float* partials = static_cast<const float*>(gr.readback.mapped());
