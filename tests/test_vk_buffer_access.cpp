@@ -1,8 +1,10 @@
-// Kernels reach their buffers through descriptor bindings, or, in plans beyond
-// maxStorageBufferRange, through device addresses: two builds of every kernel
-// from one source (shaders/bindings.glsl). Both must give the same bits for
-// every method, input type and shape, including shapes whose planes are not a
-// multiple of four samples (the kernels' scalar paths).
+// Kernels reach their buffers through descriptor bindings, or, in plans where
+// not even one sensor fits in maxStorageBufferRange, through device addresses:
+// two builds of every kernel from one source (shaders/bindings.glsl). Both
+// must give the same bits for every method, input type and shape, including
+// shapes whose planes are not a multiple of four samples (the kernels' scalar
+// paths). So must a plan recorded in blocks of its sensors, each block bound
+// to its range of the buffers (vk/sensor_blocks.hpp).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -11,6 +13,8 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "vk/plan_impl.hpp"
+#include "vk/sensor_blocks.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/rig/background.hpp"
 
@@ -26,6 +30,8 @@ struct Shape {
 struct Results {
     std::vector<Image> fused;
     std::vector<Metrics> metrics;
+    bool addressed = false;             // the plan ran the device-address kernels
+    std::size_t intermediates = 0;      // device buffers the plan's graph made
 };
 
 std::vector<Image> float_frames(const Shape& s) {
@@ -35,7 +41,7 @@ std::vector<Image> float_frames(const Shape& s) {
     return floats;
 }
 
-Results run(Context& ctx, const FusionSpec& spec, const Shape& s) {
+PlanConfig config(const FusionSpec& spec, const Shape& s) {
     PlanConfig cfg;
     cfg.fusion = spec;
     cfg.height = s.height;
@@ -46,33 +52,11 @@ Results run(Context& ctx, const FusionSpec& spec, const Shape& s) {
     cfg.input = s.input;
     cfg.metrics = MetricSet::all();
     cfg.precision = s.precision;
-    Plan plan(ctx, cfg);
-    const std::vector<Image> floats = float_frames(s);
-    std::vector<std::vector<std::uint8_t>> bytes;
-    std::vector<FrameView> views;
-    for (const Image& f : floats) {
-        std::vector<std::uint8_t> b;
-        for (float v : f.data) b.push_back(std::uint8_t(v * 255.0f + 0.5f));
-        bytes.push_back(std::move(b));
-    }
-    for (int i = 0; i < s.sensors * s.frames; ++i)
-        views.push_back(s.input == PixelType::U8
-                            ? FrameView{bytes[std::size_t(i)].data(), s.height, s.width, s.channels, PixelType::U8}
-                            : FrameView::of(floats[std::size_t(i)]));
-    const Image bg = convert<float>(random_image(s.height, s.width, s.channels, 7));
-    for (int sensor = 0; sensor < s.sensors; ++sensor) plan.set_background(sensor, FrameView::of(bg));
-    plan.run(views);
-    Results r;
-    for (int sensor = 0; sensor < s.sensors; ++sensor) {
-        r.fused.push_back(plan.fused(sensor));
-        r.metrics.push_back(plan.metrics(sensor));
-    }
-    return r;
+    return cfg;
 }
 
-class VulkanBufferAccess : public VulkanTest {};
-
-TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
+// Every method, the wavelet in both of its border kinds.
+std::vector<FusionSpec> method_specs() {
     std::vector<FusionSpec> specs;
     for (Method m : {Method::ChannelSum, Method::Brovey, Method::Laplacian}) {
         FusionSpec f;
@@ -86,36 +70,115 @@ TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
         f.mode = mode;
         specs.push_back(f);
     }
+    return specs;
+}
+
+// Whether the method runs on the shape and device at all.
+bool applies(const FusionSpec& spec, const Shape& s, const Context& ctx) {
+    if (s.channels != 3 && spec.method != Method::Laplacian && spec.method != Method::Wavelet) return false;
+    if (spec.method == Method::ChannelSum && s.frames != 3) return false;
+    return s.precision != Precision::Fp16Storage || ctx.device().fp16_storage;
+}
+
+std::string describe(const FusionSpec& spec, const Shape& s) {
+    return std::string(to_string(spec.method)) + " " + std::to_string(s.height) + "x" + std::to_string(s.width) + "x" +
+           std::to_string(s.channels) + " K" + std::to_string(s.frames) + " S" + std::to_string(s.sensors) +
+           (s.input == PixelType::U8 ? " u8" : " f32") + (s.precision == Precision::Fp16Storage ? " fp16" : "");
+}
+
+void expect_same_bits(const Results& a, const Results& b, const std::string& what) {
+    ASSERT_EQ(a.fused.size(), b.fused.size()) << what;
+    for (std::size_t sensor = 0; sensor < a.fused.size(); ++sensor) {
+        const Image& fa = a.fused[sensor];
+        const Image& fb = b.fused[sensor];
+        ASSERT_EQ(fa.data.size(), fb.data.size()) << what;
+        EXPECT_EQ(0, std::memcmp(fa.data.data(), fb.data.data(), fa.data.size() * sizeof(float)))
+            << what << " sensor " << sensor;
+        const Metrics& ma = a.metrics[sensor];
+        const Metrics& mb = b.metrics[sensor];
+        EXPECT_EQ(ma.sharpness, mb.sharpness) << what << " sensor " << sensor;
+        EXPECT_EQ(ma.contrast, mb.contrast) << what << " sensor " << sensor;
+        EXPECT_EQ(ma.background_diff, mb.background_diff) << what << " sensor " << sensor;
+    }
+}
+
+Results run(Context& ctx, const FusionSpec& spec, const Shape& s) {
+    Plan plan(ctx, config(spec, s));
+    const std::vector<Image> floats = float_frames(s);
+    std::vector<std::vector<std::uint8_t>> bytes;
+    std::vector<FrameView> views;
+    for (const Image& f : floats) {
+        std::vector<std::uint8_t> b;
+        for (float v : f.data) b.push_back(std::uint8_t(v * 255.0f + 0.5f));
+        bytes.push_back(std::move(b));
+    }
+    for (int i = 0; i < s.sensors * s.frames; ++i)
+        views.push_back(s.input == PixelType::U8
+                            ? FrameView{bytes[std::size_t(i)].data(), s.height, s.width, s.channels, PixelType::U8}
+                            : FrameView::of(floats[std::size_t(i)]));
+    for (int sensor = 0; sensor < s.sensors; ++sensor)
+        plan.set_background(sensor,
+                            FrameView::of(convert<float>(random_image(s.height, s.width, s.channels, 7 + std::uint32_t(sensor)))));
+    plan.run(views);
+    Results r;
+    r.addressed = vk::PlanAccess::of(plan).addressed;
+    r.intermediates = vk::PlanAccess::of(plan).buffers.size();
+    for (int sensor = 0; sensor < s.sensors; ++sensor) {
+        r.fused.push_back(plan.fused(sensor));
+        r.metrics.push_back(plan.metrics(sensor));
+    }
+    return r;
+}
+
+class VulkanBufferAccess : public VulkanTest {};
+
+TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
     const Shape shapes[] = {{96, 256, 3, 3, 2, PixelType::U8},  // planes of whole quads
                             {96, 128, 3, 3, 1, PixelType::F32},
                             {75, 77, 3, 3, 2, PixelType::U8},  // 5775 pixels: the scalar paths
                             {75, 77, 1, 2, 1, PixelType::F32},
                             {96, 256, 3, 3, 1, PixelType::U8, Precision::Fp16Storage},  // float16 planes
                             {75, 77, 3, 2, 1, PixelType::F32, Precision::Fp16Storage}};
-    for (const FusionSpec& spec : specs)
-        for (const Shape& s : shapes) {
-            if (s.channels != 3 && spec.method != Method::Laplacian && spec.method != Method::Wavelet) continue;
-            if (spec.method == Method::ChannelSum && s.frames != 3) continue;
-            if (s.precision == Precision::Fp16Storage && !ctx().device().fp16_storage) continue;
-            const std::string what = std::string(to_string(spec.method)) + " " + std::to_string(s.height) + "x" +
-                                     std::to_string(s.width) + "x" + std::to_string(s.channels) + " K" +
-                                     std::to_string(s.frames) + " S" + std::to_string(s.sensors) +
-                                     (s.input == PixelType::U8 ? " u8" : " f32") +
-                                     (s.precision == Precision::Fp16Storage ? " fp16" : "");
-            const Results bound = run(ctx(), spec, s);
-            const Results addressed = run(addressed_context(), spec, s);
-            for (int sensor = 0; sensor < s.sensors; ++sensor) {
-                const Image& a = bound.fused[std::size_t(sensor)];
-                const Image& b = addressed.fused[std::size_t(sensor)];
-                ASSERT_EQ(a.data.size(), b.data.size()) << what;
-                EXPECT_EQ(0, std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)))
-                    << what << " sensor " << sensor;
-                const Metrics& ma = bound.metrics[std::size_t(sensor)];
-                const Metrics& mb = addressed.metrics[std::size_t(sensor)];
-                EXPECT_EQ(ma.sharpness, mb.sharpness) << what;
-                EXPECT_EQ(ma.contrast, mb.contrast) << what;
-                EXPECT_EQ(ma.background_diff, mb.background_diff) << what;
+    for (const FusionSpec& spec : method_specs())
+        for (const Shape& s : shapes)
+            if (applies(spec, s, ctx()))
+                expect_same_bits(run(ctx(), spec, s), run(addressed_context(), spec, s), describe(spec, s));
+}
+
+// A plan whose buffers exceed one binding is recorded in blocks of sensors.
+// Here the device's binding range is narrowed to 4.5 sensors' largest buffer,
+// so 9 sensors run as blocks of 4, 4 and 1 where every per-sensor buffer's
+// stride keeps block offsets aligned, and through device addresses where not.
+TEST_F(VulkanBufferAccess, SensorBlocksGiveTheBitsOfOneBlock) {
+    Context narrow(validated_options());
+    struct Case {
+        Shape shape;
+        bool bound;  // block offsets can be aligned: the blocks are bound
+    };
+    const Case cases[] = {{{96, 256, 3, 3, 9, PixelType::U8}, true},
+                          {{96, 256, 3, 3, 9, PixelType::F32}, true},  // Brovey's thresholds: 4 bytes a sensor
+                          {{75, 77, 3, 3, 9, PixelType::U8}, false},   // odd frame bytes: no aligned block
+                          {{96, 256, 3, 3, 9, PixelType::U8, Precision::Fp16Storage}, true}};
+    auto& limits = vk::ContextAccess::of(narrow).properties.limits;
+    const std::uint32_t full_range = limits.maxStorageBufferRange;
+    for (const FusionSpec& spec : method_specs())
+        for (const Case& c : cases) {
+            const Shape& s = c.shape;
+            if (!applies(spec, s, ctx())) continue;
+            PlanConfig one = config(spec, s);
+            one.sensors = 1;
+            limits.maxStorageBufferRange = std::uint32_t(vk::plan_buffer_bytes(one, vk::PlanKind::Fuse) * 4.5);
+            const Results blocks = run(narrow, spec, s);
+            limits.maxStorageBufferRange = full_range;
+            const Results whole = run(ctx(), spec, s);
+            const std::string what = describe(spec, s);
+            ASSERT_FALSE(whole.addressed) << what;
+            EXPECT_EQ(blocks.addressed, !c.bound) << what;
+            // The blocks share one block's intermediates.
+            if (c.bound) {
+                EXPECT_EQ(blocks.intermediates, whole.intermediates) << what;
             }
+            expect_same_bits(blocks, whole, what);
         }
 }
 

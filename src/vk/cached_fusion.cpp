@@ -57,7 +57,7 @@ CachedSources decompose(Context::Impl& ctx, const PlanConfig& cfg, std::uint32_t
         CommandSlot slot(ctx, 0);
         Recorder rec(ctx, slot.recording_target(), slot.queries(), "", sets,
                      ctx.device_addresses_only || needs_device_addresses(cfg, ctx.properties.limits));
-        GraphBuilder g{ctx, cfg, rec, buffers, 0, {&upload}};
+        GraphBuilder g{ctx, cfg, rec, buffers, 0, {upload.span()}};
         FrameSource input(g, upload.span());
         group.levels = cfg.fusion.method == Method::Wavelet ? record_wavelet_decompose(g, input)
                                                             : record_laplacian_decompose(g, input);
@@ -180,8 +180,8 @@ CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
     gr.sets.emplace(ctx_);
     gr.slot.emplace(ctx_, 0);
     Recorder rec(ctx_, gr.slot->recording_target(), gr.slot->queries(), "", *gr.sets, addressed_);
-    std::vector<const Buffer*> fixed{&gr.table, &gr.readback};
-    for (const Buffer& b : cache_->buffers) fixed.push_back(&b);
+    std::vector<DeviceSpan> fixed{gr.table.span(), gr.readback.span()};
+    for (const Buffer& b : cache_->buffers) fixed.push_back(b.span());
     GraphBuilder g{ctx_, gr.cfg, rec, gr.buffers, 0, fixed};
     const std::uint32_t sources = std::uint32_t(shape_.sources);
     const VkDeviceAddress fused = shape_.fusion.method == Method::Wavelet

@@ -8,29 +8,36 @@
 
 namespace vkfuse::vk {
 
+Buffer& GraphBuilder::intermediate(VkDeviceSize bytes, MemoryUse use) {
+    if (!reuse_from) return buffers.emplace_back(ctx, bytes, use);
+    // A later block has as many sensors as the first or fewer, and the same
+    // graph: the same requests in the same order, none larger.
+    if (*reuse_from >= buffers.size() || buffers[*reuse_from].size() < bytes)
+        throw Error(ErrorKind::Device, "internal: a block of sensors records other intermediates than the first");
+    return buffers[(*reuse_from)++];
+}
+
 VkDeviceAddress GraphBuilder::floats(std::uint64_t count) {
-    buffers.emplace_back(ctx, count * sizeof(float), MemoryUse::Device);
-    return buffers.back().address();
+    return intermediate(count * sizeof(float), MemoryUse::Device).address();
 }
 
 VkDeviceAddress GraphBuilder::planes(std::uint64_t count) {
     const std::uint64_t bytes_per_sample = cfg.precision == Precision::Fp16Storage ? 2 : 4;
     // Rounded up to whole floats: a float16 plane set of odd length stays 4-byte sized.
-    buffers.emplace_back(ctx, (count * bytes_per_sample + 3) / 4 * 4, MemoryUse::Device);
-    return buffers.back().address();
+    return intermediate((count * bytes_per_sample + 3) / 4 * 4, MemoryUse::Device).address();
 }
 
 DeviceSpan GraphBuilder::span(VkDeviceAddress address, VkDeviceSize bytes) const {
-    auto within = [&](const Buffer& b) -> std::optional<DeviceSpan> {
-        if (!b.handle() || address < b.address() || address >= b.address() + b.size()) return std::nullopt;
+    auto within = [&](const DeviceSpan& b) -> std::optional<DeviceSpan> {
+        if (!b.buffer || address < b.address() || address >= b.address() + b.bytes) return std::nullopt;
         const VkDeviceSize from = address - b.address();
-        if (bytes > b.size() - from) throw Error(ErrorKind::Device, "internal: span past the end of its buffer");
-        return b.span().sub(from, bytes);
+        if (bytes > b.bytes - from) throw Error(ErrorKind::Device, "internal: span past the end of its buffer");
+        return b.sub(from, bytes);
     };
     for (const Buffer& b : buffers)
+        if (auto s = within(b.span())) return *s;
+    for (const DeviceSpan& b : fixed)
         if (auto s = within(b)) return *s;
-    for (const Buffer* b : fixed)
-        if (auto s = within(*b)) return *s;
     throw Error(ErrorKind::Device, "internal: no plan buffer holds the address");
 }
 
@@ -65,9 +72,15 @@ VkDeviceAddress FrameSource::planes() {
 }
 
 VkDeviceAddress GraphBuilder::constants(const std::vector<float>& values) {
-    buffers.emplace_back(ctx, values.size() * sizeof(float), MemoryUse::Upload);
-    std::memcpy(buffers.back().mapped(), values.data(), values.size() * sizeof(float));
-    return buffers.back().address();
+    const std::size_t bytes = values.size() * sizeof(float);
+    const bool reused = reuse_from.has_value();
+    Buffer& b = intermediate(bytes, MemoryUse::Upload);
+    // The first block's dispatches read these values too: a later block
+    // shares them, never rewrites them.
+    if (reused && std::memcmp(b.mapped(), values.data(), bytes) != 0)
+        throw Error(ErrorKind::Device, "internal: a block of sensors records other constants than the first");
+    if (!reused) std::memcpy(b.mapped(), values.data(), bytes);
+    return b.address();
 }
 
 }  // namespace vkfuse::vk

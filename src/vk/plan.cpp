@@ -9,6 +9,7 @@
 #include "core/validate_shape.hpp"
 #include "vk/magnitude.hpp"
 #include "vk/method_recorders.hpp"
+#include "vk/sensor_blocks.hpp"
 #include "vk/plan_impl.hpp"
 #include "vkfuse/core/error.hpp"
 
@@ -41,6 +42,18 @@ void validate_config(const PlanConfig& c, vk::PlanKind kind) {
 }
 
 std::size_t pixel_bytes(PixelType t) { return t == PixelType::U8 ? 1 : 4; }
+
+// Bytes per sensor in each of the plan's per-sensor buffers: the frames as
+// uploaded, a plane set (backgrounds, the read-back image), the metric
+// partials and a Brovey threshold.
+struct SensorStrides {
+    std::uint64_t frames, planes, partials, threshold;
+};
+SensorStrides sensor_strides(const PlanConfig& c) {
+    const std::uint64_t samples = std::uint64_t(c.height) * std::uint64_t(c.width) * std::uint64_t(c.channels);
+    return {samples * pixel_bytes(c.input) * std::uint64_t(c.frames), samples * 4,
+            std::uint64_t(vk::metric_groups(c)) * vk::kMetricPartialFloats * 4, 4};
+}
 
 void check_precision(const PlanConfig& c, const DeviceInfo& device) {
     if (c.precision == Precision::Fp16Storage && !device.fp16_storage)
@@ -97,27 +110,64 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
 }
 
 void Plan::Impl::record() {
-    addressed = ctx.device_addresses_only || vk::needs_device_addresses(cfg, ctx.properties.limits);
+    // Sensors per recorded block (vk/sensor_blocks.hpp). A skipping plan
+    // compacts its fused sensors into the first slots of every buffer, so
+    // it is one block, bound or addressed.
+    const auto S = std::uint32_t(cfg.sensors);
+    const SensorStrides per = sensor_strides(cfg);
+    const std::uint64_t strides[] = {per.frames, per.planes, per.partials, per.threshold};
+    const auto& limits = ctx.properties.limits;
+    PlanConfig one = cfg;
+    one.sensors = 1;
+    std::uint32_t block =
+        vk::sensors_per_binding(S, vk::plan_buffer_bytes(one, kind), strides, limits.maxStorageBufferRange,
+                                limits.minStorageBufferOffsetAlignment);
+    if (cfg.skip.policy != SkipPolicy::Off && block < S) block = 0;
+    addressed = ctx.device_addresses_only || block == 0;
+    if (addressed) block = S;
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->recording_target(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed,
                      embedded);
     if (cfg.skip.policy != SkipPolicy::Off) {
         skip.emplace(ctx, cfg, upload, addressed);
-        rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, std::uint32_t(cfg.sensors));
+        rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, S);
         background_in_slot.assign(std::size_t(cfg.sensors), -1);
     }
-    vk::GraphBuilder g{ctx,
-                       cfg,
-                       rec,
-                       buffers,
-                       thresholds.address(),
-                       {&upload, &background, &readback, &thresholds, &device_frames, &device_fused}};
+    const std::size_t first_intermediate = buffers.size();
+    for (std::uint32_t from = 0; from < S; from += block)
+        record_sensors(rec, from, std::min(block, S - from),
+                       from == 0 ? std::nullopt : std::optional<std::size_t>(first_intermediate));
+    rec.finish();
+    stage_names = rec.stage_names();
+    if (skip) skip->set_dispatches(rec.sensor_dispatches());
+}
+
+void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint32_t count,
+                                std::optional<std::size_t> reuse_from) {
+    PlanConfig block = cfg;
+    block.sensors = int(count);
+    // This block's range of a per-sensor buffer (the whole of it for one
+    // block; the last block's runs to the end of its buffer).
+    const bool whole = count == std::uint32_t(cfg.sensors), last = from + count == std::uint32_t(cfg.sensors);
+    auto range = [&](const vk::DeviceSpan& all, std::uint64_t stride) {
+        return !all.buffer || whole ? all : all.sub(from * stride, last ? 0 : count * stride);
+    };
+    const SensorStrides per = sensor_strides(cfg);
+    const vk::DeviceSpan frames = range(device_frames.handle() ? device_frames.span() : upload.span(), per.frames);
+    const vk::DeviceSpan image =
+        cfg.want_fused
+            ? range(device_fused.handle() ? device_fused.span() : readback.span().sub(0, partials_offset), per.planes)
+            : vk::DeviceSpan{};
+    const vk::DeviceSpan partials = range(readback.span().sub(partials_offset), per.partials);
+    const vk::DeviceSpan backgrounds = range(background.span(), per.planes);
+    const vk::DeviceSpan block_thresholds = range(thresholds.span(), per.threshold);
+    vk::GraphBuilder g{ctx,         block, rec, buffers, block_thresholds.buffer ? block_thresholds.address() : 0,
+                       {frames, image, partials, backgrounds, block_thresholds}};
+    g.reuse_from = reuse_from;
     if (skip) g.sparse = skip->sparse();
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
     const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
-    const vk::DeviceSpan frames = device_frames.handle() ? device_frames.span() : upload.span();
-    const vk::DeviceSpan image = device_fused.handle() ? device_fused.span() : readback.span().sub(0, partials_offset);
     const std::optional<vk::DeviceSpan> wanted_image = cfg.want_fused ? std::optional(image) : std::nullopt;
     VkDeviceAddress fused_planes = 0;
     bool pointwise = false;  // the fusion kernel wrote the image itself
@@ -140,17 +190,14 @@ void Plan::Impl::record() {
             const vk::DeviceSpan fused = g.span(fused_planes);
             rec.dispatch("pack", {fused, fused, image, image},
                          vk::PushConstants().u32(pixels).u32(std::uint32_t(cfg.channels)).u32(quads), grid.x, grid.y,
-                         std::uint32_t(cfg.sensors));
+                         count);
             rec.mark("pack");
         }
     }
     const bool packs = cfg.want_fused && !pointwise && vk::metrics_write_image(cfg);
     if (!cfg.metrics.empty())
-        record_metrics(g, fused_planes, cfg.metrics.has(Metric::BackgroundDiff) ? background.address() : 0,
-                       readback.span().sub(partials_offset), packs ? std::optional(image) : std::nullopt);
-    rec.finish();
-    stage_names = rec.stage_names();
-    if (skip) skip->set_dispatches(rec.sensor_dispatches());
+        record_metrics(g, fused_planes, background.handle() ? backgrounds.address() : 0, partials,
+                       packs ? std::optional(image) : std::nullopt);
 }
 
 void Plan::Impl::submit_and_wait() {
@@ -484,8 +531,16 @@ std::vector<KernelTime> Plan::profile() const {
     const std::vector<std::uint64_t> ticks = im.slot->timestamps(n);
     std::vector<KernelTime> out;
     const double ns_per_tick = im.ctx.properties.limits.timestampPeriod;
-    for (std::uint32_t i = 0; i + 1 < n; ++i)
-        out.push_back({im.stage_names[i], double(ticks[i + 1] - ticks[i]) * ns_per_tick * 1e-6});
+    // A plan recorded in blocks of sensors (vk/sensor_blocks.hpp) runs each
+    // stage once per block: a stage's time is the sum over its blocks.
+    for (std::uint32_t i = 0; i + 1 < n; ++i) {
+        const double ms = double(ticks[i + 1] - ticks[i]) * ns_per_tick * 1e-6;
+        auto same = std::find_if(out.begin(), out.end(), [&](const KernelTime& k) { return k.name == im.stage_names[i]; });
+        if (same != out.end())
+            same->ms += ms;
+        else
+            out.push_back({im.stage_names[i], ms});
+    }
     return out;
 }
 

@@ -31,11 +31,16 @@ struct GraphBuilder {
     // sensor's scaled domain (vk/magnitude.hpp), host-written every run; 0
     // otherwise (8-bit frames are never scaled: the kernel's own 1e-6).
     VkDeviceAddress brovey_thresholds = 0;
-    // Buffers the plan owns outside `buffers` (upload, background, readback).
-    std::vector<const Buffer*> fixed;
+    // The ranges of the plan's buffers outside `buffers` (upload, background,
+    // readback) that this recording reaches: whole, or one block's sensors.
+    std::vector<DeviceSpan> fixed;
     // Tile-sparse fusion (vk/plan_sparse.hpp): the region records the
     // wavelet's dispatches declare theirs in; null when the plan fuses whole.
     SparseRegions* sparse = nullptr;
+    // A later block of a plan's sensors (SensorBlocks): the intermediates are
+    // the first block's, taken again in the order it made them, from this
+    // index of `buffers` on. nullopt: every intermediate is a new buffer.
+    std::optional<std::size_t> reuse_from = std::nullopt;
 
     std::uint32_t planes_in() const { return std::uint32_t(cfg.sensors * cfg.frames * cfg.channels); }
     std::uint32_t planes_out() const { return std::uint32_t(cfg.sensors * cfg.channels); }
@@ -46,16 +51,20 @@ struct GraphBuilder {
     VkDeviceAddress planes(std::uint64_t count);
     // A small host-written buffer holding values (filter taps, ...); its address.
     VkDeviceAddress constants(const std::vector<float>& values);
-    // The `bytes` (0: to the end of its buffer) starting at `address`, in the
-    // buffer of the plan that holds it: what Recorder::dispatch binds.
+    // The `bytes` (0: to the end of its buffer, or of the range of it in
+    // `fixed`) starting at `address`: what Recorder::dispatch binds.
     DeviceSpan span(VkDeviceAddress address, VkDeviceSize bytes = 0) const;
+
+private:
+    Buffer& intermediate(VkDeviceSize bytes, MemoryUse use);
 };
 
-// Whether a plan's largest buffer may exceed what one descriptor can bind
-// (maxStorageBufferRange): such a plan runs the kernels' device-address
-// variants.
+// Whether a multi-scale graph's largest buffer may exceed what one
+// descriptor can bind (maxStorageBufferRange): it then runs the kernels'
+// device-address variants.
 bool needs_device_addresses(const PlanConfig& cfg, const VkPhysicalDeviceLimits& limits);
-// At most the bytes of a plan's largest buffer (proportional to its sensors).
+// At most the bytes of a multi-scale graph's largest buffer (proportional to
+// its sensors): one plane set of every frame.
 double largest_buffer_bytes(const PlanConfig& cfg);
 
 // A cycle's input: the frames as uploaded (S*K frames, HWC, 8-bit or
@@ -243,6 +252,11 @@ struct Plan::Impl {
     Impl& operator=(const Impl&) = delete;
 
     void record();
+    // Records the pass chain of sensors from .. from + count - 1 (a block,
+    // vk/sensor_blocks.hpp), on the intermediates from index reuse_from of
+    // `buffers` on where given (a block after the first).
+    void record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint32_t count,
+                        std::optional<std::size_t> reuse_from);
     void submit_and_wait();
     // make_plan()'s buffers, checked against the plan (vk/interop.cpp).
     void borrow_buffers(const PlanBuffers& io);

@@ -45,9 +45,10 @@ struct ContextOptions {
     // Receives every validation-layer message (errors and warnings) when
     // validation is on. Tests fail on any message of type VALIDATION.
     std::function<void(const std::string&)> on_validation_message;
-    // Kernels reach their buffers through descriptor bindings, except in
-    // plans whose buffers exceed what one binding may span (the device's
-    // maxStorageBufferRange), which use device addresses. true: every plan
+    // Kernels reach their buffers through descriptor bindings; a plan whose
+    // buffers exceed what one binding may span (the device's
+    // maxStorageBufferRange) runs in blocks of sensors that fit, and uses
+    // device addresses only where not even one sensor fits. true: every plan
     // uses device addresses (to test or compare that path on any plan).
     bool device_addresses_only = false;
     FilterArithmetic filter_arithmetic = FilterArithmetic::Auto;

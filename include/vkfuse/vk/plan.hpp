@@ -109,7 +109,9 @@ public:
     // device computed a non-finite value: never Inf, NaN or a wrong number.
     const Image& fused(int sensor) const;  // requires want_fused
     Metrics metrics(int sensor) const;     // requires metrics not empty
-    std::vector<KernelTime> profile() const;  // requires profile
+    // Requires profile: each stage's GPU time in the last run, in recording
+    // order, every sensor's work in it (empty before a fusing run).
+    std::vector<KernelTime> profile() const;
     SkipOutcome skip_outcome(int sensor) const;  // idle false, fractions 1 when skip is off
     // Fusion command buffers submitted so far: one per run(), whatever the
     // sensor count. A skipping plan submits its change detection first in
