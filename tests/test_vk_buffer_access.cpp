@@ -7,7 +7,9 @@
 // to its range of the buffers (vk/sensor_blocks.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -180,6 +182,67 @@ TEST_F(VulkanBufferAccess, SensorBlocksGiveTheBitsOfOneBlock) {
             }
             expect_same_bits(blocks, whole, what);
         }
+}
+
+// A skipping plan stays one block: its change detection binds per-sensor
+// means of 2K floats a pixel beside the frames, beyond what a pointwise
+// method's own buffers take. Between the two it must take device addresses.
+TEST_F(VulkanBufferAccess, SkippingPlansBeyondOneBindingTakeDeviceAddresses) {
+    Context narrow(validated_options());
+    FusionSpec brovey;
+    brovey.method = Method::Brovey;
+    PlanConfig cfg = config(brovey, Shape{96, 256, 3, 3, 4, PixelType::U8});
+    cfg.skip.policy = SkipPolicy::Idle;
+    const double samples = double(cfg.sensors) * cfg.height * cfg.width * cfg.channels;
+    // Room for the frames and the fused planes (4 bytes a sample), not for
+    // the means (2K floats a sample).
+    vk::ContextAccess::of(narrow).properties.limits.maxStorageBufferRange = std::uint32_t(samples * 5);
+    std::optional<Plan> plan;
+    ASSERT_NO_THROW(plan.emplace(narrow, cfg));
+    EXPECT_TRUE(vk::PlanAccess::of(*plan).addressed);
+}
+
+// Profiling a plan of many blocks: every block's stages are timed (the query
+// pool grows with the blocks) and each stage is reported once, summed.
+TEST_F(VulkanBufferAccess, ProfiledBlocksReportEachStageOnce) {
+    Context narrow(validated_options());
+    FusionSpec spec;
+    spec.method = Method::Laplacian;
+    spec.levels = 2;
+    const Shape s{32, 64, 3, 3, 120, PixelType::U8};
+    PlanConfig cfg = config(spec, s);
+    cfg.metrics = {};  // 5 stages a block, with pack
+    cfg.profile = true;
+    PlanConfig one = cfg;
+    one.sensors = 1;
+    vk::ContextAccess::of(narrow).properties.limits.maxStorageBufferRange =
+        std::uint32_t(vk::plan_buffer_bytes(one, vk::PlanKind::Fuse) * 1.5);
+    Plan blocks(narrow, cfg);
+    ASSERT_FALSE(vk::PlanAccess::of(blocks).addressed);
+    ASSERT_EQ(vk::PlanAccess::of(blocks).blocks(), 120u);
+    cfg.profile = false;
+    Plan whole(ctx(), cfg);
+    const std::vector<Image> floats = float_frames(s);
+    std::vector<std::vector<std::uint8_t>> bytes;
+    std::vector<FrameView> views;
+    for (const Image& f : floats) {
+        std::vector<std::uint8_t>& b = bytes.emplace_back();
+        for (float v : f.data) b.push_back(std::uint8_t(v * 255.0f + 0.5f));
+    }
+    for (auto& b : bytes) views.push_back(FrameView{b.data(), s.height, s.width, s.channels, PixelType::U8});
+    blocks.run(views);
+    whole.run(views);
+    std::vector<std::string> names;
+    for (const KernelTime& k : blocks.profile()) {
+        EXPECT_EQ(std::count(names.begin(), names.end(), k.name), 0) << k.name;
+        EXPECT_GE(k.ms, 0.0) << k.name;
+        names.push_back(k.name);
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"unpack", "pyr_down", "lap_fuse", "lap_collapse", "pack"}));
+    for (int sensor = 0; sensor < s.sensors; ++sensor)
+        EXPECT_EQ(0, std::memcmp(blocks.fused(sensor).data.data(), whole.fused(sensor).data.data(),
+                                 whole.fused(sensor).data.size() * sizeof(float)))
+            << "sensor " << sensor;
 }
 
 // The background model's mean, a plan kind of its own (float32 planes, one sensor).

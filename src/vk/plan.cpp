@@ -101,7 +101,8 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     if (cfg.profile && !ctx.timestamps)
         throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
     // Should anything here throw, the members built so far release themselves.
-    slot.emplace(ctx, cfg.profile ? vk::Recorder::kMaxTimestamps : 0, embedded);
+    // Room for every block's stages (vk/sensor_blocks.hpp).
+    slot.emplace(ctx, cfg.profile ? vk::Recorder::kMaxTimestamps * blocks() : 0, embedded);
     record();
     if (embedded) slot->record_primary();
     background_set.assign(std::size_t(cfg.sensors), false);
@@ -109,25 +110,40 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     fused_fresh.assign(std::size_t(cfg.sensors), false);
 }
 
-void Plan::Impl::record() {
-    // Sensors per recorded block (vk/sensor_blocks.hpp). A skipping plan
-    // compacts its fused sensors into the first slots of every buffer, so
-    // it is one block, bound or addressed.
+std::uint32_t Plan::Impl::sensors_per_block() const {
     const auto S = std::uint32_t(cfg.sensors);
-    const SensorStrides per = sensor_strides(cfg);
-    const std::uint64_t strides[] = {per.frames, per.planes, per.partials, per.threshold};
     const auto& limits = ctx.properties.limits;
+    if (ctx.device_addresses_only) return 0;
+    // A skipping plan compacts its fused sensors into the first slots of
+    // every buffer, and its change detection binds per-sensor means beside
+    // them (what largest_buffer_bytes bounds): one block, bound or addressed.
+    if (cfg.skip.policy != SkipPolicy::Off) return vk::needs_device_addresses(cfg, limits) ? 0 : S;
+    const SensorStrides per = sensor_strides(cfg);
+    std::vector<std::uint64_t> strides{per.frames};  // of the per-sensor buffers the plan has
+    if (cfg.want_fused || background.handle()) strides.push_back(per.planes);
+    if (!cfg.metrics.empty()) strides.push_back(per.partials);
+    if (thresholds.handle()) strides.push_back(per.threshold);
     PlanConfig one = cfg;
     one.sensors = 1;
-    std::uint32_t block =
-        vk::sensors_per_binding(S, vk::plan_buffer_bytes(one, kind), strides, limits.maxStorageBufferRange,
-                                limits.minStorageBufferOffsetAlignment);
-    if (cfg.skip.policy != SkipPolicy::Off && block < S) block = 0;
-    addressed = ctx.device_addresses_only || block == 0;
+    return vk::sensors_per_binding(S, vk::plan_buffer_bytes(one, kind), strides, limits.maxStorageBufferRange,
+                                   limits.minStorageBufferOffsetAlignment);
+}
+
+std::uint32_t Plan::Impl::blocks() const {
+    const std::uint32_t block = sensors_per_block();
+    return block == 0 ? 1 : (std::uint32_t(cfg.sensors) + block - 1) / block;
+}
+
+void Plan::Impl::record() {
+    // Sensors per recorded block (vk/sensor_blocks.hpp); 0: every sensor in
+    // one block through device addresses.
+    const auto S = std::uint32_t(cfg.sensors);
+    std::uint32_t block = sensors_per_block();
+    addressed = block == 0;
     if (addressed) block = S;
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->recording_target(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed,
-                     embedded);
+                     embedded, vk::Recorder::kMaxTimestamps * blocks());
     if (cfg.skip.policy != SkipPolicy::Off) {
         skip.emplace(ctx, cfg, upload, addressed);
         rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, S);
@@ -158,7 +174,8 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
         cfg.want_fused
             ? range(device_fused.handle() ? device_fused.span() : readback.span().sub(0, partials_offset), per.planes)
             : vk::DeviceSpan{};
-    const vk::DeviceSpan partials = range(readback.span().sub(partials_offset), per.partials);
+    const vk::DeviceSpan partials =
+        cfg.metrics.empty() ? vk::DeviceSpan{} : range(readback.span().sub(partials_offset), per.partials);
     const vk::DeviceSpan backgrounds = range(background.span(), per.planes);
     const vk::DeviceSpan block_thresholds = range(thresholds.span(), per.threshold);
     vk::GraphBuilder g{ctx,         block, rec, buffers, block_thresholds.buffer ? block_thresholds.address() : 0,

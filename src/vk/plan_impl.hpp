@@ -208,7 +208,7 @@ struct Plan::Impl {
     vk::Buffer thresholds;  // Brovey, float32 input: GraphBuilder::brovey_thresholds
     std::vector<vk::Buffer> buffers;
     std::optional<vk::DescriptorSets> sets;  // the bound kernels' descriptors, written by record()
-    bool addressed = false;                  // needs_device_addresses, or ContextOptions::device_addresses
+    bool addressed = false;                  // sensors_per_block() 0, or ContextOptions::device_addresses_only
     // A skipping plan's detection and compaction (vk/plan_skip.hpp); before
     // `slot`, so the fusion command buffer that reads its indirect arguments
     // is released first.
@@ -251,6 +251,11 @@ struct Plan::Impl {
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
+    // Sensors per recorded block: every sensor where the plan's buffers fit
+    // one binding, 0 where the kernels must use device addresses (in one
+    // block); and the blocks that makes.
+    std::uint32_t sensors_per_block() const;
+    std::uint32_t blocks() const;
     void record();
     // Records the pass chain of sensors from .. from + count - 1 (a block,
     // vk/sensor_blocks.hpp), on the intermediates from index reuse_from of

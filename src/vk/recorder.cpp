@@ -15,9 +15,9 @@ PushConstants& PushConstants::put(const void* v, std::size_t n) {
 }
 
 Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
-                   DescriptorSets& sets, bool addressed, bool secondary)
+                   DescriptorSets& sets, bool addressed, bool secondary, std::uint32_t timestamps)
     : ctx_(ctx), cmd_(cmd), queries_(queries), variant_(precision + (addressed ? "_addr" : "")), sets_(sets),
-      addressed_(addressed) {
+      addressed_(addressed), timestamps_(timestamps) {
     VkCommandBufferInheritanceInfo inheritance{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     if (secondary) {
@@ -26,7 +26,7 @@ Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries,
     }
     check(ctx.api->vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
     if (queries_) {
-        ctx.api->vkCmdResetQueryPool(cmd_, queries_, 0, kMaxTimestamps);
+        ctx.api->vkCmdResetQueryPool(cmd_, queries_, 0, timestamps_);
         ctx.api->vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
     }
     // Frames the host wrote before the submit are read by the first kernels.
@@ -110,7 +110,7 @@ void Recorder::compact_sensors(VkBuffer indirect, std::uint32_t capacity, std::u
 
 void Recorder::mark(const std::string& name) {
     if (!queries_) return;
-    if (names_.size() + 2 > kMaxTimestamps) throw Error(ErrorKind::Device, "internal: too many profiled stages");
+    if (names_.size() + 2 > timestamps_) throw Error(ErrorKind::Device, "internal: too many profiled stages");
     names_.push_back(name);
     ctx_.api->vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, queries_, std::uint32_t(names_.size()));
 }

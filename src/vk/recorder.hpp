@@ -24,8 +24,10 @@ public:
     // in the one the context chose: "_f64" before the rest where it is float64.
     // A secondary cmd is begun for simultaneous use outside any render pass
     // (CommandSlot's secondary, executed by its primary and by callers).
+    // timestamps: the size of `queries`, what bounds the marks.
     Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
-             DescriptorSets& sets, bool addressed, bool secondary = false);
+             DescriptorSets& sets, bool addressed, bool secondary = false,
+             std::uint32_t timestamps = kMaxTimestamps);
 
     // Records shader over groups (x, y, z) with `buffers` in the order of its
     // BUFFERS list (shaders/bindings.glsl) and `scalars`, the rest of its
@@ -59,6 +61,7 @@ private:
     std::string variant_;
     DescriptorSets& sets_;
     bool addressed_;
+    std::uint32_t timestamps_;
     bool first_ = true;
     std::vector<std::string> names_;
     VkBuffer indirect_ = VK_NULL_HANDLE;
