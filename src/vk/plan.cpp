@@ -178,7 +178,7 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
         cfg.metrics.empty() ? vk::DeviceSpan{} : range(readback.span().sub(partials_offset), per.partials);
     const vk::DeviceSpan backgrounds = range(background.span(), per.planes);
     const vk::DeviceSpan block_thresholds = range(thresholds.span(), per.threshold);
-    vk::GraphBuilder g{ctx,         block, rec, buffers, block_thresholds.buffer ? block_thresholds.address() : 0,
+    vk::GraphBuilder g{ctx, block, rec, buffers, block_thresholds.buffer ? block_thresholds.address() : 0,
                        {frames, image, partials, backgrounds, block_thresholds}};
     g.reuse_from = reuse_from;
     if (skip) g.sparse = skip->sparse();
