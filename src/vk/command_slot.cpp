@@ -39,6 +39,7 @@ CommandSlot::CommandSlot(Context::Impl& ctx, std::uint32_t timestamp_queries, bo
             qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
             qci.queryCount = timestamp_queries;
             check(api.vkCreateQueryPool(ctx.device, &qci, nullptr, &queries_), "vkCreateQueryPool");
+            query_count_ = timestamp_queries;
         }
     } catch (...) {
         release();
@@ -64,6 +65,7 @@ void CommandSlot::release() {
     secondary_ = VK_NULL_HANDLE;
     fence_ = VK_NULL_HANDLE;
     queries_ = VK_NULL_HANDLE;
+    query_count_ = 0;
     pool_ = VK_NULL_HANDLE;
     cmd_ = VK_NULL_HANDLE;
     in_flight_ = false;

@@ -26,6 +26,7 @@ public:
     // The buffer may be recorded again (its pool allows the implicit reset).
     VkCommandBuffer cmd() const { return cmd_; }
     VkQueryPool queries() const { return queries_; }  // VK_NULL_HANDLE without timestamps
+    std::uint32_t query_count() const { return query_count_; }  // its size (0 without)
     VkCommandBuffer secondary() const { return secondary_; }  // VK_NULL_HANDLE unless asked for
     // Where the work is recorded: the secondary buffer where there is one.
     VkCommandBuffer recording_target() const { return secondary_ ? secondary_ : cmd_; }
@@ -55,6 +56,7 @@ private:
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
     VkQueryPool queries_ = VK_NULL_HANDLE;
+    std::uint32_t query_count_ = 0;
     VkCommandBuffer secondary_ = VK_NULL_HANDLE;
     VkSemaphore timeline_ = VK_NULL_HANDLE;
     std::uint64_t timeline_value_ = 0;  // signalled by the last submit

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -43,16 +44,31 @@ void validate_config(const PlanConfig& c, vk::PlanKind kind) {
 
 std::size_t pixel_bytes(PixelType t) { return t == PixelType::U8 ? 1 : 4; }
 
-// Bytes per sensor in each of the plan's per-sensor buffers: the frames as
-// uploaded, a plane set (backgrounds, the read-back image), the metric
-// partials and a Brovey threshold.
-struct SensorStrides {
-    std::uint64_t frames, planes, partials, threshold;
+// One of the plan's buffers that hold a slice per sensor, whole (a null span
+// where the plan has none of it), and the bytes of each sensor's slice.
+struct PerSensor {
+    vk::DeviceSpan all;
+    std::uint64_t stride;
 };
-SensorStrides sensor_strides(const PlanConfig& c) {
+// The frames as uploaded (or the caller's), the read-back image (or the
+// caller's), the metric partials, the backgrounds and Brovey's thresholds.
+struct PerSensorBuffers {
+    PerSensor frames, image, partials, backgrounds, thresholds;
+    std::array<PerSensor, 5> each() const { return {frames, image, partials, backgrounds, thresholds}; }
+};
+PerSensorBuffers per_sensor_buffers(const Plan::Impl& p) {
+    const PlanConfig& c = p.cfg;
     const std::uint64_t samples = std::uint64_t(c.height) * std::uint64_t(c.width) * std::uint64_t(c.channels);
-    return {samples * pixel_bytes(c.input) * std::uint64_t(c.frames), samples * 4,
-            std::uint64_t(vk::metric_groups(c)) * vk::kMetricPartialFloats * 4, 4};
+    const vk::DeviceSpan image = !c.want_fused             ? vk::DeviceSpan{}
+                                 : p.device_fused.handle() ? p.device_fused.span()
+                                                           : p.readback.span().sub(0, p.partials_offset);
+    return {{p.device_frames.handle() ? p.device_frames.span() : p.upload.span(),
+             samples * pixel_bytes(c.input) * std::uint64_t(c.frames)},
+            {image, samples * 4},
+            {c.metrics.empty() ? vk::DeviceSpan{} : p.readback.span().sub(p.partials_offset),
+             std::uint64_t(vk::metric_groups(c)) * vk::kMetricPartialFloats * 4},
+            {p.background.span(), samples * 4},
+            {p.thresholds.span(), 4}};
 }
 
 void check_precision(const PlanConfig& c, const DeviceInfo& device) {
@@ -118,11 +134,9 @@ std::uint32_t Plan::Impl::sensors_per_block() const {
     // every buffer, and its change detection binds per-sensor means beside
     // them (what largest_buffer_bytes bounds): one block, bound or addressed.
     if (cfg.skip.policy != SkipPolicy::Off) return vk::needs_device_addresses(cfg, limits) ? 0 : S;
-    const SensorStrides per = sensor_strides(cfg);
-    std::vector<std::uint64_t> strides{per.frames};  // of the per-sensor buffers the plan has
-    if (cfg.want_fused || background.handle()) strides.push_back(per.planes);
-    if (!cfg.metrics.empty()) strides.push_back(per.partials);
-    if (thresholds.handle()) strides.push_back(per.threshold);
+    std::vector<std::uint64_t> strides;  // of the per-sensor buffers the plan has
+    for (const PerSensor& b : per_sensor_buffers(*this).each())
+        if (b.all.buffer) strides.push_back(b.stride);
     PlanConfig one = cfg;
     one.sensors = 1;
     return vk::sensors_per_binding(S, vk::plan_buffer_bytes(one, kind), strides, limits.maxStorageBufferRange,
@@ -143,7 +157,7 @@ void Plan::Impl::record() {
     if (addressed) block = S;
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->recording_target(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed,
-                     embedded, vk::Recorder::kMaxTimestamps * blocks());
+                     embedded, slot->query_count());
     if (cfg.skip.policy != SkipPolicy::Off) {
         skip.emplace(ctx, cfg, upload, addressed);
         rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, S);
@@ -165,19 +179,12 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
     // This block's range of a per-sensor buffer (the whole of it for one
     // block; the last block's runs to the end of its buffer).
     const bool whole = count == std::uint32_t(cfg.sensors), last = from + count == std::uint32_t(cfg.sensors);
-    auto range = [&](const vk::DeviceSpan& all, std::uint64_t stride) {
-        return !all.buffer || whole ? all : all.sub(from * stride, last ? 0 : count * stride);
+    auto range = [&](const PerSensor& b) {
+        return !b.all.buffer || whole ? b.all : b.all.sub(from * b.stride, last ? 0 : count * b.stride);
     };
-    const SensorStrides per = sensor_strides(cfg);
-    const vk::DeviceSpan frames = range(device_frames.handle() ? device_frames.span() : upload.span(), per.frames);
-    const vk::DeviceSpan image =
-        cfg.want_fused
-            ? range(device_fused.handle() ? device_fused.span() : readback.span().sub(0, partials_offset), per.planes)
-            : vk::DeviceSpan{};
-    const vk::DeviceSpan partials =
-        cfg.metrics.empty() ? vk::DeviceSpan{} : range(readback.span().sub(partials_offset), per.partials);
-    const vk::DeviceSpan backgrounds = range(background.span(), per.planes);
-    const vk::DeviceSpan block_thresholds = range(thresholds.span(), per.threshold);
+    const PerSensorBuffers per = per_sensor_buffers(*this);
+    const vk::DeviceSpan frames = range(per.frames), image = range(per.image), partials = range(per.partials),
+                         backgrounds = range(per.backgrounds), block_thresholds = range(per.thresholds);
     vk::GraphBuilder g{ctx, block, rec, buffers, block_thresholds.buffer ? block_thresholds.address() : 0,
                        {frames, image, partials, backgrounds, block_thresholds}};
     g.reuse_from = reuse_from;
