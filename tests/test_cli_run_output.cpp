@@ -256,7 +256,7 @@ TEST(CliRunUnlucky, SigtermFinishesTheRunAndTheRecording) {
     TempDir tmp;
     const pid_t pid = start_cli({"run", "--virtual-clock", "--background-frames", "1", "--method", "brovey",
                                  "--backend", "cpu", "--out", tmp.file("o"), "--record", tmp.file("rec")},
-                                tmp.file("stdout"), "/dev/null");
+                                tmp.file("stdout"), tmp.file("stderr"));
     // The run writes into a hidden staging directory beside --out: wait for
     // two metrics lines there.
     auto staged_lines = [&] {
@@ -273,6 +273,9 @@ TEST(CliRunUnlucky, SigtermFinishesTheRunAndTheRecording) {
     EXPECT_EQ(WEXITSTATUS(status), 0);
     const std::size_t cycles = count_lines(read_bytes(tmp.file("o/metrics.jsonl")));
     EXPECT_GE(cycles, 2u);
+    EXPECT_TRUE(has(read_bytes(tmp.file("stderr")),
+                    "vkfuse run: interrupted after " + std::to_string(cycles) + " cycles; wrote what they fused\n"))
+        << read_bytes(tmp.file("stderr"));
     EXPECT_EQ(read_bytes(tmp.file("o/summary.json")), read_bytes(tmp.file("stdout")));
     ASSERT_TRUE(fs::exists(tmp.file("rec/manifest.json")));
     const CliResult replay = run_cli({"run", "--replay", tmp.file("rec"), "--backend", "cpu", "--out", tmp.file("b")});

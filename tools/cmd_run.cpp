@@ -1,8 +1,6 @@
 // vkfuse run: sensors cycling through an LED sequence, fused every cycle.
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -16,6 +14,7 @@
 #include "run_sensors.hpp"
 #include "run_stats.hpp"
 #include "staged_directory.hpp"
+#include "standard_output.hpp"
 #include "stop_signal.hpp"
 #include "vkfuse/core/error.hpp"
 
@@ -71,7 +70,9 @@ constexpr CommandSpec kSpec{
     "text). A live line on stderr shows fused fps and per-stage latency; Ctrl-C\n"
     "or SIGTERM finishes the cycle in hand and writes the files. Prints a JSON\n"
     "summary. --out and --record are written beside their names and appear whole\n"
-    "when the run succeeds; a failed run leaves no trace and changes no file.",
+    "when the run succeeds; a failed run leaves no trace and changes no file. A\n"
+    "run that fused no cycle (stopped before its first) has failed, and so has a\n"
+    "--record without a whole cycle of every sensor (it could not be replayed).",
     kOptions,
     "vkfuse run --sensors 4 --cycles 120 --virtual-clock --out out",
 };
@@ -250,10 +251,32 @@ RunStats cycle_loop(Session& s, Rig& rig, const StopSignal& stop) {
     return stats;
 }
 
-void print_checked(const std::string& text) {
-    const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size();
-    if (std::fflush(stdout) != 0 || !ok || std::ferror(stdout))
-        throw Error(ErrorKind::Io, std::string("stdout: write failed: ") + std::strerror(errno));
+// What the run leaves untouched when it has nothing to publish, for its one line.
+std::string left_as_they_were(const Session& s) {
+    std::string kept;
+    if (s.out_dir) kept = "--out " + s.out_dir->target();
+    if (s.record_dir) kept += (kept.empty() ? "--record " : " and --record ") + s.record_dir->target();
+    return kept.empty() ? "" : "; " + kept + " left as " + (s.out_dir && s.record_dir ? "they were" : "it was");
+}
+
+// A run publishes only results it can stand behind: at least one fused cycle,
+// and a recording that `run --replay` can play (backgrounds, which the rig
+// takes before its first cycle, and a whole cycle of every sensor). Anything
+// less fails the run, and nothing is published or replaced.
+void require_results(const Session& s, const RunStats& stats, bool interrupted) {
+    if (stats.fused() == 0) {
+        if (!stats.errors().empty()) throw Error(ErrorKind::Device, *stats.errors().begin());
+        throw Error(ErrorKind::InvalidArgument, std::string(interrupted ? "interrupted" : "stopped") +
+                                                    " before any cycle was fused; nothing written" +
+                                                    left_as_they_were(s));
+    }
+    if (!s.recorder) return;
+    for (std::size_t i = 0; i < s.sensors.rig.size(); ++i)
+        if (stats.fused(i) == 0)
+            throw Error(ErrorKind::InvalidArgument,
+                        "--record " + s.record_dir->target() + ": " + s.sensors.rig[i].sensor->info().serial +
+                            " delivered no whole cycle, so the recording could not be replayed; nothing written" +
+                            left_as_they_were(s));
 }
 
 int run(const Args& args) {
@@ -266,7 +289,7 @@ int run(const Args& args) {
     rig.start();
     const RunStats stats = cycle_loop(s, rig, stop);
     const std::string summary = stats.summary_json(rig);
-    if (stats.fused() == 0 && !stats.errors().empty()) throw Error(ErrorKind::Device, *stats.errors().begin());
+    require_results(s, stats, stop.requested());
     if (s.recorder) s.recorder->finish();
     if (s.output) s.output->finish(summary);
     // Without --out the summary on stdout is the only result: a failed write
@@ -274,6 +297,9 @@ int run(const Args& args) {
     print_checked(summary + "\n");
     if (s.record_dir) s.record_dir->publish();
     if (s.out_dir) s.out_dir->publish();
+    if (stop.requested())
+        std::fprintf(stderr, "vkfuse run: interrupted after %llu cycle%s; wrote what they fused\n",
+                     static_cast<unsigned long long>(stats.cycles()), stats.cycles() == 1 ? "" : "s");
     return 0;
 }
 

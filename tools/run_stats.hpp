@@ -18,6 +18,7 @@ public:
     void add(const CycleResult& cycle, double write_s);
     std::uint64_t cycles() const { return cycles_; }
     std::uint64_t fused() const { return fused_; }  // sensor-cycles fused from fresh frames
+    std::uint64_t fused(std::size_t sensor) const { return sensors_.at(sensor).fused; }
     const std::set<std::string>& errors() const { return errors_; }
     // Sensor time the fused frames span so far (the widest over sensors).
     double sensor_elapsed_s() const;
