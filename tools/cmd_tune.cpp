@@ -88,31 +88,50 @@ void ask_operator(const std::string& serial, const std::string& object) {
         throw Error(ErrorKind::InvalidArgument, "tune: standard input closed while waiting for " + object);
 }
 
-void capture(const Args& args, const std::string& directory, RecordOptions rec, StopSignal& stop) {
+// Where tune captures: the DIGIT named or plugged in (opened now, so its frame
+// size is known), else the simulated DIGIT; and the objects pressed.
+struct CaptureSource {
+    std::vector<std::string> digits;  // empty: the simulated DIGIT
+    std::optional<RunSensors> sensors;
+    SensorInfo info;
+    std::vector<std::string> objects;
+};
+
+CaptureSource choose_source(const Args& args) {
+    CaptureSource src;
+    if (auto v = args.value("--sensor")) src.digits = {*v};
+    if (src.digits.empty() && !args.has("--simulate")) {
+        src.digits = plugged_digits();
+        if (src.digits.size() > 1) src.digits.resize(1);
+    }
+    if (src.digits.empty()) {
+        src.objects = args.has("--objects") ? parse_sim_objects("--objects", *args.value("--objects"))
+                                            : std::vector<std::string>{"coin", "lego"};
+        src.info = SimDigit(SimDigitOptions{}).info();
+        return src;
+    }
+    if (!args.has("--objects")) args.usage_error("--objects: name the objects you will press onto " + src.digits[0]);
+    src.objects = split_list(*args.value("--objects"));
+    src.sensors = digit_sensors(RunOptions{}, src.digits);
+    src.info = src.sensors->rig.front().sensor->info();
+    return src;
+}
+
+void capture(CaptureSource& src, const std::string& directory, RecordOptions rec, StopSignal& stop) {
     Progress progress("vkfuse tune");
     rec.progress = [&](std::size_t done, std::size_t total) {
         if (stop.requested()) throw Error(ErrorKind::InvalidArgument, "tune: interrupted; nothing written");
         progress.fraction(done, total, "frames");
     };
-    std::vector<std::string> digits;
-    if (auto v = args.value("--sensor")) digits = {*v};
-    if (digits.empty() && !args.has("--simulate")) {
-        digits = plugged_digits();
-        if (digits.size() > 1) digits.resize(1);
-    }
-    if (digits.empty()) {
-        if (!args.has("--objects")) rec.objects = {"coin", "lego"};
-        else rec.objects = parse_sim_objects("--objects", *args.value("--objects"));
+    rec.objects = src.objects;
+    if (!src.sensors) {
         std::fprintf(stderr, "tune: no DIGIT plugged in; capturing from the simulated DIGIT\n");
         record_simulated(directory, SimDigitOptions{}, rec);
     } else {
-        if (!args.has("--objects")) args.usage_error("--objects: name the objects you will press onto " + digits[0]);
-        rec.objects = split_list(*args.value("--objects"));
-        RunOptions options;
-        RunSensors sensors = digit_sensors(options, digits);
         DatasetWriter writer(directory, "vkfuse tune");
-        rec.place_object = [&](const std::string& object) { ask_operator(digits[0], object); };
-        record_dataset(*sensors.rig.front().sensor, sensors.rig.front().clock, writer, rec);
+        const std::string serial = src.digits[0];
+        rec.place_object = [&](const std::string& object) { ask_operator(serial, object); };
+        record_dataset(*src.sensors->rig.front().sensor, src.sensors->rig.front().clock, writer, rec);
         writer.finish();
     }
     progress.finish();
@@ -171,6 +190,15 @@ int run(const Args& args) {
     const std::filesystem::path parent = std::filesystem::absolute(out).parent_path();
     if (::access(parent.c_str(), W_OK) != 0)
         throw Error(ErrorKind::Io, out + ": cannot write in " + parent.string());
+    std::optional<CaptureSource> source_of_frames;
+    if (!args.has("--dataset")) {
+        source_of_frames = choose_source(args);
+        StudyShape shape{rec.grid.size(), source_of_frames->objects, source_of_frames->info.height,
+                         source_of_frames->info.width};
+        check_study_shape(shape, options,
+                          "tune: --grid " + args.value("--grid").value_or("0,15") + " --max-k " +
+                              std::to_string(options.max_k));
+    }
 
     StopSignal stop;
     ScratchDirectory scratch;
@@ -183,7 +211,7 @@ int run(const Args& args) {
         source = dataset_dir = *v;
         if (auto objects = args.value("--objects")) options.objects = split_list(*objects);
     } else {
-        capture(args, keep ? keep->path() : scratch.dataset(), rec, stop);
+        capture(*source_of_frames, keep ? keep->path() : scratch.dataset(), rec, stop);
         source = "captured now";
         dataset_dir = scratch.dataset();
         if (keep) {

@@ -49,6 +49,13 @@ void append_subsets(std::size_t n, std::size_t k, std::vector<std::vector<std::s
     }
 }
 
+void check_options(const StudyOptions& o) {
+    if (o.max_k < 2)
+        throw Error(ErrorKind::InvalidArgument, "study: max_k must be at least 2 (one setting alone is no fusion)");
+    if (o.greedy_max < 1) throw Error(ErrorKind::InvalidArgument, "study: greedy_max must be at least 1");
+    if (o.top < 1) throw Error(ErrorKind::InvalidArgument, "study: top must be at least 1");
+}
+
 std::vector<Gains> gains_of(const std::vector<Metrics>& metrics, const std::vector<Metrics>& reference) {
     std::vector<Gains> g;
     for (std::size_t o = 0; o < metrics.size(); ++o)
@@ -62,24 +69,9 @@ public:
     Study(const Dataset& dataset, const StudyOptions& options, Context* context)
         : options_(checked(options)), methods_(select_study_methods(options.methods)),
           data_(load_study_data(dataset, options.serial, options.objects)), evaluator_(data_, context) {
-        for (const StudyMethod& m : methods_)
-            for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), data_.settings.size()); ++k)
-                if (takes(m, k)) try {
-                        validate(m.spec, data_.height, data_.width, 3, int(k));
-                    } catch (const Error& e) {
-                        throw Error(ErrorKind::InvalidArgument,
-                                    dataset.directory + ": " + std::to_string(data_.width) + "x" +
-                                        std::to_string(data_.height) + " frames do not suit " + m.name + " (" +
-                                        e.what() + ")");
-                    }
+        check_study_shape({data_.settings.size(), data_.objects, data_.height, data_.width}, options,
+                          dataset.directory);
         const std::size_t n = data_.settings.size();
-        std::size_t count = 0;
-        for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), n); ++k) count += choose(n, k);
-        if (count > kMaxCombinations)
-            throw Error(ErrorKind::InvalidArgument,
-                        dataset.directory + ": " + std::to_string(n) + " settings in combinations of up to " +
-                            std::to_string(options.max_k) + " make more than " + std::to_string(kMaxCombinations) +
-                            " combinations; take fewer (max_k)");
         for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), n); ++k)
             append_subsets(n, k, table_.combinations);
         for (std::size_t c = 0; c < table_.combinations.size(); ++c) index_[table_.combinations[c]] = c;
@@ -115,10 +107,7 @@ public:
 private:
     // The options are checked before any frame is read.
     static const StudyOptions& checked(const StudyOptions& o) {
-        if (o.max_k < 2)
-            throw Error(ErrorKind::InvalidArgument, "study: max_k must be at least 2 (one setting alone is no fusion)");
-        if (o.greedy_max < 1) throw Error(ErrorKind::InvalidArgument, "study: greedy_max must be at least 1");
-        if (o.top < 1) throw Error(ErrorKind::InvalidArgument, "study: top must be at least 1");
+        check_options(o);
         return o;
     }
 
@@ -334,6 +323,31 @@ std::vector<std::size_t> fusion_order(const StudyMethod& method, const std::vect
     while (std::next_permutation(order.begin(), order.end()))
         if (score(order) > score(best)) best = order;
     return best;
+}
+
+void check_study_shape(const StudyShape& shape, const StudyOptions& options, const std::string& subject) {
+    using study::choose, study::kMaxCombinations, study::takes;
+    study::check_options(options);
+    const std::vector<StudyMethod> methods = select_study_methods(options.methods);
+    study::check_study_size(shape.settings, shape.objects, shape.height, shape.width, subject);
+    const std::size_t n = shape.settings;
+    const std::size_t most = std::min<std::size_t>(std::size_t(options.max_k), n);
+    for (const StudyMethod& m : methods)
+        for (std::size_t k = 2; k <= most; ++k)
+            if (takes(m, k)) try {
+                    validate(m.spec, shape.height, shape.width, 3, int(k));
+                } catch (const Error& e) {
+                    throw Error(ErrorKind::InvalidArgument, subject + ": " + std::to_string(shape.width) + "x" +
+                                                                std::to_string(shape.height) +
+                                                                " frames do not suit " + m.name + " (" + e.what() + ")");
+                }
+    std::size_t count = 0;
+    for (std::size_t k = 2; k <= most; ++k) count += choose(n, k);
+    if (count > kMaxCombinations)
+        throw Error(ErrorKind::InvalidArgument, subject + ": " + std::to_string(n) +
+                                                    " settings in combinations of up to " +
+                                                    std::to_string(options.max_k) + " make more than " +
+                                                    std::to_string(kMaxCombinations) + " combinations; take fewer (max_k)");
 }
 
 StudyResult run_study(const Dataset& dataset, const StudyOptions& options, Context* context) {

@@ -18,6 +18,28 @@ std::size_t index_of(const std::vector<Illumination>& settings, const Illuminati
 
 }  // namespace
 
+void check_study_size(std::size_t settings, const std::vector<std::string>& objects, int height, int width,
+                      const std::string& subject) {
+    const auto fail_with = [&](const std::string& problem) {
+        throw Error(ErrorKind::InvalidArgument, subject + ": " + problem);
+    };
+    if (settings < 2) fail_with(std::to_string(settings) + " setting" + (settings == 1 ? "" : "s") +
+                                "; a study fuses two or more");
+    if (settings > kMaxSettings)
+        fail_with(std::to_string(settings) + " settings, more than a study takes (" + std::to_string(kMaxSettings) + ")");
+    if (objects.size() > kMaxObjects)
+        fail_with(std::to_string(objects.size()) + " objects, more than a study takes (" + std::to_string(kMaxObjects) +
+                  ")");
+    for (auto it = objects.begin(); it != objects.end(); ++it)
+        if (std::find(objects.begin(), it, *it) != it) fail_with("object \"" + *it + "\" named twice");
+    const std::size_t frame_bytes = std::size_t(std::max(height, 0)) * std::size_t(std::max(width, 0)) * 3;
+    if (objects.size() * settings * frame_bytes > kMaxFrameBytes)
+        fail_with(std::to_string(objects.size()) + " objects x " + std::to_string(settings) + " settings of " +
+                  std::to_string(width) + "x" + std::to_string(height) +
+                  " frames are more than a study holds in memory (" + std::to_string(kMaxFrameBytes >> 30) +
+                  " GiB); study fewer objects");
+}
+
 StudyData load_study_data(const Dataset& dataset, const std::string& serial, const std::vector<std::string>& objects) {
     if (dataset.sensors.empty()) fail(dataset, "no sensor recorded");
     const DatasetSensorRecord& sensor = serial.empty() ? dataset.sensors.front() : dataset.sensor(serial);
@@ -60,18 +82,9 @@ StudyData load_study_data(const Dataset& dataset, const std::string& serial, con
             known.push_back(take.object);
     d.objects = objects.empty() ? known : objects;
     if (d.objects.empty()) fail(dataset, "sensor " + sensor.info.serial + " has no object frames, only backgrounds");
-    if (d.objects.size() > kMaxObjects)
-        fail(dataset, std::to_string(d.objects.size()) + " objects, more than a study takes (" +
-                          std::to_string(kMaxObjects) + ")");
-    const std::size_t frame_bytes = std::size_t(d.height) * std::size_t(d.width) * 3;
-    if (d.objects.size() * d.settings.size() * frame_bytes > kMaxFrameBytes)
-        fail(dataset, std::to_string(d.objects.size()) + " objects x " + std::to_string(d.settings.size()) +
-                          " settings of " + std::to_string(d.width) + "x" + std::to_string(d.height) +
-                          " frames are more than a study holds in memory (" + std::to_string(kMaxFrameBytes >> 30) +
-                          " GiB); study fewer objects");
+    check_study_size(d.settings.size(), d.objects, d.height, d.width, dataset.directory);
     for (auto it = d.objects.begin(); it != d.objects.end(); ++it) {
         const std::string& object = *it;
-        if (std::find(d.objects.begin(), it, object) != it) fail(dataset, "object \"" + object + "\" named twice");
         if (std::find(known.begin(), known.end(), object) == known.end())
             fail(dataset, "no object \"" + object + "\" for sensor " + sensor.info.serial);
         std::vector<const DatasetFrame*> first(d.settings.size(), nullptr);

@@ -29,6 +29,12 @@ struct StudyData {
     std::vector<Image> backgrounds;          // [setting]: the mean of its background frames
 };
 
+// Throws Error(InvalidArgument), the message starting with subject, for fewer
+// than two or more than kMaxSettings settings, an object named twice, more
+// than kMaxObjects objects, or frames beyond kMaxFrameBytes.
+void check_study_size(std::size_t settings, const std::vector<std::string>& objects, int height, int width,
+                      const std::string& subject);
+
 // Reads the frames of sensor `serial` (empty: the dataset's first) and of
 // `objects` (empty: every object that sensor pressed). Throws
 // Error(InvalidArgument) naming the dataset for a missing sensor, object,

@@ -140,4 +140,22 @@ struct StudyResult {
 // frame is read, for options.methods that select_study_methods refuses.
 StudyResult run_study(const Dataset& dataset, const StudyOptions& options, Context* context);
 
+// What a study will take, known before any frame is captured: how many LED
+// settings, which objects, and the frames' size.
+struct StudyShape {
+    std::size_t settings = 0;
+    std::vector<std::string> objects;
+    int height = 0;
+    int width = 0;
+};
+
+// Everything run_study would refuse about a dataset of this shape under
+// options, without the dataset: bad options, fewer than two or more settings
+// than a study takes, an object named twice, more objects or frame bytes than
+// a study holds, more combinations than it scores, frames too small for a
+// selected method. Throws Error(InvalidArgument), the message starting with
+// subject. run_study checks every dataset with it; `vkfuse tune` checks its
+// capture with it before the first frame.
+void check_study_shape(const StudyShape& shape, const StudyOptions& options, const std::string& subject);
+
 }  // namespace vkfuse
