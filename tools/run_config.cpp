@@ -1,6 +1,8 @@
 #include "run_config.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "io/file_bytes.hpp"
 #include "io/json_value.hpp"
@@ -10,6 +12,10 @@ namespace vkfuse::cli {
 namespace {
 
 constexpr std::size_t kMaxConfigBytes = 1 << 20;
+
+// Every key a configuration may hold: what run_config_json writes.
+constexpr const char* kConfigKeys[] = {"format", "version", "sequence", "method",      "wavelet",
+                                       "levels", "mode",    "base_rule", "detail_rule", "tuned"};
 
 const json::Value* member(const json::Value& root, const char* key, bool (json::Value::*is)() const,
                           const std::string& subject, const char* expected, bool required) {
@@ -54,6 +60,19 @@ RunConfig read_run_config(const std::string& path) {
         throw Error(ErrorKind::InvalidArgument, "--config " + std::string(e.what()));
     }
     if (!root.is_object()) throw Error(ErrorKind::InvalidArgument, subject + ": not a JSON object");
+    // A misspelt key would silently leave its default in force, and of a key
+    // given twice one would silently win: both are refused.
+    const json::Value::Object& members = root.object();
+    for (auto it = members.begin(); it != members.end(); ++it) {
+        if (std::find(std::begin(kConfigKeys), std::end(kConfigKeys), it->first) == std::end(kConfigKeys)) {
+            std::string expected;
+            for (const char* k : kConfigKeys) expected += (expected.empty() ? "" : ", ") + std::string(k);
+            throw Error(ErrorKind::InvalidArgument,
+                        subject + ": unknown key " + json::quote(it->first) + " (expected " + expected + ")");
+        }
+        if (std::any_of(members.begin(), it, [&](const auto& m) { return m.first == it->first; }))
+            throw Error(ErrorKind::InvalidArgument, subject + ": " + json::quote(it->first) + " given twice");
+    }
     const json::Value* format = member(root, "format", &json::Value::is_string, subject, "a string", true);
     if (format->string() != "vkfuse-config")
         throw Error(ErrorKind::InvalidArgument, subject + ": \"format\" is not \"vkfuse-config\"");

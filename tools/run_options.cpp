@@ -27,7 +27,8 @@ IlluminationSequence sequence_option(const std::string& text, const LedLayout& l
         for (const Illumination& s : seq) s.check(leds);
         return seq;
     } catch (const Error& e) {
-        fail("--sequence " + text + ": " + e.what());
+        // A sequence past the bound is named by its start: the line stays short.
+        fail("--sequence " + (text.size() > 64 ? text.substr(0, 64) + "..." : text) + ": " + e.what());
     }
 }
 

@@ -10,6 +10,7 @@
 #include "vkfuse/core/skip.hpp"
 #include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/sensor/digit_sensor.hpp"
+#include "vkfuse/rig/rig.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
@@ -57,7 +58,7 @@ struct RunOptions {
 
 inline constexpr const char* kDefaultSequence = "15,15,15+0,15,0";
 inline constexpr int kDefaultBackgroundFrames = 20;
-inline constexpr int kMaxSimulatedSensors = 64;
+inline constexpr int kMaxSimulatedSensors = int(kMaxRigSensors);
 
 // Parses and checks every option (names, ranges, the sequence against the
 // DIGIT's LEDs, the object against the simulator's). Throws Error naming the option.

@@ -26,7 +26,14 @@ double seconds_since(WallClock::time_point t) { return std::chrono::duration<dou
 
 void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors) {
     if (sensors.empty()) throw Error(ErrorKind::InvalidArgument, "rig: no sensors");
+    if (sensors.size() > kMaxRigSensors)
+        throw Error(ErrorKind::InvalidArgument, "rig: " + std::to_string(sensors.size()) + " sensors; at most " +
+                                                    std::to_string(kMaxRigSensors));
     if (cfg.sequence.empty()) throw Error(ErrorKind::InvalidArgument, "rig: empty illumination sequence");
+    if (cfg.sequence.size() > kMaxSequenceSettings)
+        throw Error(ErrorKind::InvalidArgument, "rig: " + std::to_string(cfg.sequence.size()) +
+                                                    " settings in one cycle; at most " +
+                                                    std::to_string(kMaxSequenceSettings));
     if (cfg.background_frames < 0) throw Error(ErrorKind::InvalidArgument, "rig: background_frames must be >= 0");
     if (!(cfg.cycle_timeout_s > 0) || !(cfg.startup_timeout_s > 0))
         throw Error(ErrorKind::InvalidArgument, "rig: timeouts must be > 0");

@@ -101,6 +101,9 @@ IlluminationSequence parse_sequence(std::string_view text) {
                  "setting " + std::to_string(sequence.size() + 1) + ": " + e.what());
         }
         if (plus == std::string_view::npos) break;
+        if (sequence.size() == kMaxSequenceSettings)  // named by its start: the whole may be long
+            fail("illumination sequence", std::string(text.substr(0, plus)) + "+...",
+                 "more than " + std::to_string(kMaxSequenceSettings) + " settings in one cycle");
         start = plus + 1;
     }
     return sequence;

@@ -31,6 +31,10 @@ enum class FrameJudging {
     Label,   // recorded datasets: trust Frame::illumination; no calibration
 };
 
+// Sensors one rig drives at most: each has a capture thread and its own
+// buffers in one plan.
+inline constexpr std::size_t kMaxRigSensors = 64;
+
 struct RigConfig {
     FusionSpec fusion;
     IlluminationSequence sequence;  // K settings, one frame each per cycle

@@ -47,7 +47,14 @@ private:
 // The ordered settings a sensor cycles through, one frame each per cycle.
 using IlluminationSequence = std::vector<Illumination>;
 
-// "15,15,15+0,15,0" -> two settings; throws Error(InvalidArgument).
+// Settings one cycle takes at most: the paper fuses up to 5, a study's greedy
+// sequences go to 12, and each setting costs a frame period per cycle, so a
+// longer cycle (a DIGIT at 60 fps would fuse under 4 times a second) is a
+// mistake, never a configuration.
+inline constexpr std::size_t kMaxSequenceSettings = 16;
+
+// "15,15,15+0,15,0" -> two settings; throws Error(InvalidArgument), also for
+// more than kMaxSequenceSettings.
 IlluminationSequence parse_sequence(std::string_view text);
 std::string to_string(const IlluminationSequence& sequence);
 
