@@ -1,14 +1,13 @@
 // vkfuse metrics: score each input image, one JSON object per line.
 #include <array>
-#include <cerrno>
 #include <cstdio>
 #include <map>
 #include <new>
 #include <optional>
-#include <system_error>
 
 #include "backend.hpp"
 #include "commands.hpp"
+#include "standard_output.hpp"
 #include "inputs.hpp"
 #include "json.hpp"
 #include "memory_check.hpp"
@@ -120,8 +119,7 @@ int run(const Args& args) {
         out_of_memory(everything, "scoring", need);
     }
     // Printed only once every input has been scored: a failure leaves stdout empty.
-    if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
-        throw Error(ErrorKind::Io, "stdout: cannot write: " + std::error_code(errno, std::generic_category()).message());
+    print_checked(text);
     return 0;
 }
 

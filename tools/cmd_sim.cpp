@@ -6,6 +6,7 @@
 #include "progress.hpp"
 #include "sim_record.hpp"
 #include "staged_directory.hpp"
+#include "standard_output.hpp"
 #include "stop_signal.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/dataset.hpp"
@@ -62,9 +63,12 @@ int run(const Args& args) {
     };
     record_simulated(staged.path(), sim_options, rec);
     progress.finish();
+    // Reported before it is published: a report that cannot be delivered
+    // (a full disk, a closed pipe) fails the command with nothing written.
+    print_checked(out + ": " + std::to_string(rec.objects.size()) + " objects x " + std::to_string(rec.grid.size()) +
+                  " settings, " + std::to_string(rec.background_frames) + " + " + std::to_string(rec.frames) +
+                  " frames each (background + object)\n");
     staged.publish();
-    std::printf("%s: %zu objects x %zu settings, %d + %d frames each (background + object)\n", out.c_str(),
-                rec.objects.size(), rec.grid.size(), rec.background_frames, rec.frames);
     return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "standard_output.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/version.hpp"
 
@@ -74,7 +75,7 @@ int report(std::string message) {
 int main(int argc, char** argv) {
     using namespace vkfuse::cli;
     try {
-        return dispatch(std::vector<std::string>(argv + 1, argv + argc));
+        return checked_stdout(dispatch(std::vector<std::string>(argv + 1, argv + argc)));
     } catch (const std::bad_alloc&) {
         return report("out of memory");
     } catch (const std::exception& e) {
