@@ -215,7 +215,9 @@ py::dict metrics(const py::handle& image_in, const py::object& background_in, co
 }
 
 // A plan for one shape, K and method: on the device when there is one, else
-// the CPU reference path with the same interface.
+// the CPU reference path with the same interface. A Plan is one thread's at a
+// time: calls from several threads are serialised, each waiting its turn with
+// the GIL released (so the thread holding the plan can finish).
 class PyPlan {
 public:
     PyPlan(int height, int width, int channels, int frames, const std::string& dtype, const std::string& method,
@@ -236,6 +238,7 @@ public:
     void set_background(const py::handle& background_in) {
         Frames bg = to_frame(background_in, "background");
         check(bg, "background");
+        const std::unique_lock turn = take_turn();
         if (plan_) {
             plan_->set_background(0, bg.views().front());
         } else {
@@ -249,6 +252,7 @@ public:
             throw Error(ErrorKind::InvalidArgument, "frames: " + std::to_string(frames.arrays.size()) +
                                                         " given; the plan fuses " + std::to_string(config_.frames));
         check(frames, "frames[0]");
+        const std::unique_lock turn = take_turn();
         if (config_.metrics.has(Metric::BackgroundDiff) && !plan_ && !background_)
             throw Error(ErrorKind::InvalidArgument, "background_diff: set_background() first");
         Metrics m;
@@ -287,6 +291,7 @@ public:
         check(frames, "frames[0]");
         const std::vector<FrameView> views = frames.views();
         std::vector<double> ms;
+        const std::unique_lock turn = take_turn();
         py::gil_scoped_release unlocked;
         for (int i = 0; i < runs; ++i) {
             const auto start = std::chrono::steady_clock::now();
@@ -300,6 +305,16 @@ public:
     }
 
 private:
+    // This thread's turn with the plan, waited for without the GIL.
+    std::unique_lock<std::mutex> take_turn() {
+        std::unique_lock lock(mutex_, std::try_to_lock);
+        if (!lock.owns_lock()) {
+            py::gil_scoped_release unlocked;
+            lock.lock();
+        }
+        return lock;
+    }
+
     void check(const Frames& f, const std::string& what) const {
         if (f.height != config_.height || f.width != config_.width || f.channels != config_.channels)
             throw Error(ErrorKind::Shape, what + ": " + std::to_string(f.height) + "x" + std::to_string(f.width) + "x" +
@@ -316,7 +331,29 @@ private:
     Context* context_ = nullptr;
     std::optional<Plan> plan_;
     std::optional<ImageD> background_;  // the CPU path's
+    std::mutex mutex_;                  // whose turn it is
 };
+
+// The library names what it refuses as the command line spells it (--levels,
+// --base-rule/--detail-rule); in Python those are keyword arguments (levels,
+// base_rule). An option is "--" and a lower-case letter at the start of the
+// message or after a space, '(' or '/'; a file name with "--" inside keeps it.
+std::string python_words(const std::string& message) {
+    std::string out;
+    for (std::size_t i = 0; i < message.size(); ++i) {
+        const bool starts = i == 0 || message[i - 1] == ' ' || message[i - 1] == '(' || message[i - 1] == '/';
+        if (starts && message.compare(i, 2, "--") == 0 && i + 2 < message.size() && message[i + 2] >= 'a' &&
+            message[i + 2] <= 'z') {
+            std::size_t j = i + 2;
+            for (; j < message.size() && ((message[j] >= 'a' && message[j] <= 'z') || message[j] == '-'); ++j)
+                out += message[j] == '-' ? '_' : message[j];
+            i = j - 1;
+            continue;
+        }
+        out += message[i];
+    }
+    return out;
+}
 
 }  // namespace
 }  // namespace vkfuse::python
@@ -330,11 +367,14 @@ PYBIND11_MODULE(_vkfuse, m) {
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const OutOfMemory& e) {
+            PyErr_SetString(PyExc_MemoryError, python_words(e.what()).c_str());
         } catch (const Error& e) {
+            const std::string message = python_words(e.what());
             if (e.kind() == ErrorKind::InvalidArgument || e.kind() == ErrorKind::Shape)
-                PyErr_SetString(PyExc_ValueError, e.what());
+                PyErr_SetString(PyExc_ValueError, message.c_str());
             else
-                error(e.what());
+                error(message.c_str());
         }
     });
 

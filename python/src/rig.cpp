@@ -36,6 +36,10 @@ py::tuple levels_of(const Illumination& s) {
 }
 
 IlluminationSequence sequence_of(const std::vector<std::vector<int>>& settings) {
+    if (settings.size() > kMaxSequenceSettings)
+        throw Error(ErrorKind::InvalidArgument, "sequence: " + std::to_string(settings.size()) +
+                                                    " settings in one cycle; at most " +
+                                                    std::to_string(kMaxSequenceSettings));
     IlluminationSequence out;
     for (const auto& s : settings) {
         if (s.size() != 3)
@@ -122,7 +126,9 @@ public:
             for (const DatasetSensorRecord& r : recorded->sensors)
                 rig_sensors.push_back({std::make_shared<DatasetSensor>(recorded, r.info.serial, object), nullptr});
         } else {
-            if (sensors < 1) throw Error(ErrorKind::InvalidArgument, "sensors " + std::to_string(sensors) + ": must be >= 1");
+            if (sensors < 1 || std::size_t(sensors) > kMaxRigSensors)
+                throw Error(ErrorKind::InvalidArgument, "sensors " + std::to_string(sensors) + ": must be from 1 to " +
+                                                            std::to_string(kMaxRigSensors));
             config.sequence = sequence_of(sequence.value_or(std::vector<std::vector<int>>{{15, 15, 15}, {0, 15, 0}}));
             for (int i = 0; i < sensors; ++i) {
                 SimDigitOptions sim;
@@ -178,11 +184,16 @@ public:
         return d;
     }
 
-    // The next `count` cycles, one by one.
+    // The next `count` cycles, one by one. Ctrl-C (any Python signal
+    // handler that raises) is seen between cycles: the cycles taken so far
+    // are dropped with the exception, as a loop over next() would drop them.
     py::list cycles(int count) {
         if (count < 0) throw Error(ErrorKind::InvalidArgument, "cycles " + std::to_string(count) + ": must be >= 0");
         py::list out;
-        for (int i = 0; i < count && !rig_->all_failed(); ++i) out.append(next());
+        for (int i = 0; i < count && !rig_->all_failed(); ++i) {
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            out.append(next());
+        }
         return out;
     }
 

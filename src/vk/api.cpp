@@ -108,6 +108,9 @@ const char* result_name(VkResult r) {
 }
 
 void check(VkResult result, const char* what) {
+    if (result == VK_ERROR_OUT_OF_HOST_MEMORY || result == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        throw OutOfMemory(std::string("Vulkan ") + what + ": " + result_name(result) + " (" +
+                          std::to_string(int(result)) + ")");
     if (result != VK_SUCCESS)
         throw Error(ErrorKind::Device, std::string("Vulkan ") + what + ": " + result_name(result) + " (" +
                                            std::to_string(int(result)) + ")");

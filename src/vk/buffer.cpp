@@ -1,6 +1,10 @@
 #include "vk/buffer.hpp"
 
+#include <cstdint>
+#include <string>
 #include <utility>
+
+#include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
 namespace {
@@ -49,6 +53,12 @@ Buffer::Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use) : ctx_(&ct
         if (use != MemoryUse::Device)
             check(api.vkMapMemory(ctx.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
         address_ = device_address(ctx, buffer_);
+        // lavapipe's memory is a host mapping: where mmap fails (an address
+        // space limit) it still reports success, and the buffer's address and
+        // mapping read MAP_FAILED, all ones.
+        if (address_ == 0 || address_ == ~VkDeviceAddress(0) || mapped_ == reinterpret_cast<void*>(~std::uintptr_t(0)))
+            throw OutOfMemory("Vulkan vkAllocateMemory: " + std::to_string(req.size) +
+                              " bytes reported allocated that the driver could not back (out of memory)");
     } catch (...) {
         release();
         throw;

@@ -227,7 +227,7 @@ def test_a_rig_of_simulated_digits_yields_cycles_as_arrays_and_dicts(backend):
             expected = vkfuse.metrics(s["fused"], backend="cpu")
             assert s["metrics"]["sharpness"] == pytest.approx(expected["sharpness"], rel=1e-5)
             assert s["metrics"]["contrast"] == pytest.approx(expected["contrast"], rel=1e-5)
-    with pytest.raises(ValueError, match="must be >= 1"):
+    with pytest.raises(ValueError, match="sensors 0: must be from 1 to 64"):
         vkfuse.Rig(sensors=0)
     with pytest.raises(ValueError, match="level 16"):
         vkfuse.Rig(sequence=[(16, 0, 0)])

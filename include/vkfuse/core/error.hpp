@@ -28,4 +28,14 @@ private:
     ErrorKind kind_;
 };
 
+// The Device error for memory the device or its driver could not provide
+// (VK_ERROR_OUT_OF_HOST_MEMORY, VK_ERROR_OUT_OF_DEVICE_MEMORY, or an
+// allocation the driver reported made but could not back): catchable apart
+// from other device failures, as std::bad_alloc is for the host's memory
+// (the Python module raises MemoryError for both).
+class OutOfMemory : public Error {
+public:
+    explicit OutOfMemory(const std::string& message) : Error(ErrorKind::Device, message) {}
+};
+
 }  // namespace vkfuse
