@@ -19,7 +19,7 @@
 namespace vkfuse::test {
 namespace {
 
-const std::vector<std::string> kValidation{"VKFUSE_VALIDATION=1"};
+const std::vector<std::string> kValidation{"VKFUSE_VALIDATION=sync"};
 
 // Two frames of one scene, 29 x 37 x 3, scaled by a in float32, as .npy.
 std::vector<std::string> write_frames(const TempDir& dir, float a) {

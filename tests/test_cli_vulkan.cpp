@@ -1,7 +1,8 @@
 // `--backend vulkan` end to end: the GPU path must agree with the CPU path
 // (docs/spec.md tolerances: fused 1e-5 absolute, metrics 1e-5 relative). Needs a
 // Vulkan device (lavapipe in CI). Runs with the validation layer on
-// (VKFUSE_VALIDATION=1): any message lands on stderr, which must stay empty.
+// with synchronization validation (VKFUSE_VALIDATION=sync): any message lands
+// on stderr, which must stay empty.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +15,7 @@
 namespace vkfuse::test {
 namespace {
 
-const std::vector<std::string> kValidation{"VKFUSE_VALIDATION=1"};
+const std::vector<std::string> kValidation{"VKFUSE_VALIDATION=sync"};
 
 struct VkCase {
     std::string name;

@@ -10,6 +10,9 @@ ValidationLog& validation_log() {
 ContextOptions validated_options() {
     ContextOptions o;
     o.validation = true;
+    // lavapipe runs a submit's dispatches in order: only the layer's
+    // synchronization validation shows a barrier a GPU would need.
+    o.synchronization_validation = true;
     o.on_validation_message = [](const std::string& m) {
         auto& log = validation_log();
         std::lock_guard lock(log.mutex);

@@ -45,11 +45,13 @@ bool has_layer(const vk::Api& api, const char* name) {
 Context::Impl::Impl(const ContextOptions& options)
     : device_addresses_only(options.device_addresses_only), on_validation_message(options.on_validation_message) {
     api = vk::Api::load();
-    // VKFUSE_VALIDATION=1 turns the layer on for any program (the CLI in tests).
+    // VKFUSE_VALIDATION=1 turns the layer on for any program, =sync with
+    // synchronization validation (the CLI in tests).
     const char* env = std::getenv("VKFUSE_VALIDATION");
-    const bool validation = options.validation || (env && std::strcmp(env, "1") == 0);
+    const bool sync = options.synchronization_validation || (env && std::strcmp(env, "sync") == 0);
+    const bool validation = options.validation || sync || (env && std::strcmp(env, "1") == 0);
     try {
-        create_instance(validation);
+        create_instance(validation, sync);
         choose_device(options.device_index);
         choose_filter_arithmetic(options.filter_arithmetic);
         create_device();
@@ -112,7 +114,7 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
     }
 }
 
-void Context::Impl::create_instance(bool validation) {
+void Context::Impl::create_instance(bool validation, bool synchronization_validation) {
     std::uint32_t version = VK_API_VERSION_1_0;
     if (api->vkEnumerateInstanceVersion) api->vkEnumerateInstanceVersion(&version);
     if (version < VK_API_VERSION_1_2)
@@ -130,6 +132,14 @@ void Context::Impl::create_instance(bool validation) {
         layers.push_back(kValidationLayer);
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    // The layer itself offers VK_EXT_validation_features, which turns its
+    // synchronization validation on.
+    const VkValidationFeatureEnableEXT sync_feature = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = &sync_feature;
+    const bool sync = validation && synchronization_validation;
+    if (sync) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
     VkDebugUtilsMessengerCreateInfoEXT dbg{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     dbg.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     dbg.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
@@ -138,6 +148,7 @@ void Context::Impl::create_instance(bool validation) {
     dbg.pUserData = this;
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pNext = validation ? &dbg : nullptr;  // also catches create/destroy-instance messages
+    if (sync) dbg.pNext = &features;
     ci.pApplicationInfo = &app;
     ci.enabledLayerCount = std::uint32_t(layers.size());
     ci.ppEnabledLayerNames = layers.data();
@@ -145,6 +156,7 @@ void Context::Impl::create_instance(bool validation) {
     ci.ppEnabledExtensionNames = extensions.data();
     vk::check(api->vkCreateInstance(&ci, nullptr, &instance), "vkCreateInstance");
     api->load_instance(instance);
+    dbg.pNext = nullptr;  // the features belong to the instance alone
     if (validation)
         vk::check(api->vkCreateDebugUtilsMessengerEXT(instance, &dbg, nullptr, &messenger),
                   "vkCreateDebugUtilsMessengerEXT");

@@ -69,7 +69,7 @@ private:
     std::map<std::pair<std::string, std::vector<std::uint32_t>>, VkPipeline> pipelines_;
     std::map<std::string, vk::KernelInterface> interfaces_;
 
-    void create_instance(bool validation);
+    void create_instance(bool validation, bool synchronization_validation);
     void choose_device(int index);
     void choose_filter_arithmetic(FilterArithmetic wanted);
     void create_device();

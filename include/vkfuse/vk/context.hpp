@@ -42,6 +42,11 @@ std::string_view to_string(FilterArithmetic);  // "auto", "float64", "compensate
 struct ContextOptions {
     int device_index = -1;    // -1: the best usable device (discrete > integrated > cpu)
     bool validation = false;  // enable VK_LAYER_KHRONOS_validation (error if absent)
+    // With validation: also the layer's synchronization validation, which
+    // reports a missing or too weak barrier as a hazard even where the device
+    // (lavapipe runs a submit's dispatches in order) forgives it. Slower; the
+    // tests run with it.
+    bool synchronization_validation = false;
     // Receives every validation-layer message (errors and warnings) when
     // validation is on. Tests fail on any message of type VALIDATION.
     std::function<void(const std::string&)> on_validation_message;
