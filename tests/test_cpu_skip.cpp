@@ -43,9 +43,9 @@ TEST(ChangeScores, AreTheLargestDeviationInNoiseUnitsPerTile) {
     EXPECT_EQ(skip_tiles_y(h), 2);
     const std::vector<float> noise = tile_noise(r);
     ASSERT_EQ(noise.size(), 8u);
-    EXPECT_FLOAT_EQ(noise[0], 0.01f);
-    EXPECT_FLOAT_EQ(noise[4], 0.02f);
-    EXPECT_FLOAT_EQ(noise[3], float(kMinTileNoise));
+    EXPECT_FLOAT_EQ(noise[0], float(0.01f * kMeanSteps));  // in steps of 1/256 of an 8-bit level
+    EXPECT_FLOAT_EQ(noise[4], float(0.02f * kMeanSteps));
+    EXPECT_EQ(noise[3], 128.0f);  // the floor, half a level, exactly
     Image f0(h, w, 1), f1(h, w, 1);
     for (float& v : f0.data) v = 0.5f;
     f1 = f0;

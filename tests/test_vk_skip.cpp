@@ -186,6 +186,41 @@ TEST_F(VulkanSkip, AllIdleSubmitsNoFusion) {
     }
 }
 
+// "Changed" is strict: over a noiseless background (every tile's noise the
+// floor, half an 8-bit step) a sample 4 levels off scores exactly 8, which
+// a threshold of 8 keeps idle, and one level further is fused; the CPU twin
+// scores the same. Both sensors sit in one plan, in different tiles.
+TEST_F(VulkanSkip, AScoreEqualToTheThresholdStaysIdle) {
+    Scene scene{64, 96, 3, 2, {}};
+    for (int k = 0; k < scene.k; ++k) {
+        Image mean(scene.h, scene.w, scene.c), deviation(scene.h, scene.w, scene.c);
+        std::fill(mean.data.begin(), mean.data.end(), float(100 + 20 * k) / 255.0f);
+        scene.reference.mean.push_back(std::move(mean));
+        scene.reference.deviation.push_back(std::move(deviation));
+    }
+    const std::vector<Bytes> still = frames_of(scene, 1, 0.0, false);
+    std::vector<std::vector<Bytes>> sensors{still, still};
+    sensors[0][1][(std::size_t(40) * scene.w + 70) * 3 + 2] += 4;  // exactly at the threshold
+    sensors[1][0][(std::size_t(10) * scene.w + 5) * 3 + 1] += 5;   // one level above it
+    const std::vector<FrameView> all = views(scene, sensors);
+    for (int s = 0; s < 2; ++s) {
+        const std::vector<double> ref =
+            change_scores_reference(std::span(all).subspan(std::size_t(s) * 2, 2), scene.reference);
+        EXPECT_EQ(*std::max_element(ref.begin(), ref.end()), s == 0 ? 8.0 : 10.0) << "sensor " << s;
+    }
+    Plan plan(ctx(), skip_config(scene, 2, haar(), SkipPolicy::Idle, 8.0));
+    for (int s = 0; s < 2; ++s) {
+        plan.set_skip_reference(s, scene.reference);
+        plan.set_background(s, FrameView::of(scene.reference.mean[0]));
+    }
+    plan.run(all);
+    EXPECT_EQ(plan.skip_outcome(0).score, 8.0);
+    EXPECT_TRUE(plan.skip_outcome(0).idle);
+    EXPECT_EQ(plan.skip_outcome(0).changed_fraction, 0.0);
+    EXPECT_EQ(plan.skip_outcome(1).score, 10.0);
+    EXPECT_FALSE(plan.skip_outcome(1).idle);
+}
+
 TEST_F(VulkanSkip, BadConfigurationAndReferencesAreRefused) {
     const Scene scene = make_scene(16, 24, 3, 2, 3);
     PlanConfig f32 = skip_config(scene, 1, haar(), SkipPolicy::Idle, 8.0);

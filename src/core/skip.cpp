@@ -73,6 +73,10 @@ void check_skip_reference(const SkipReference& r, int height, int width, int cha
         }
 }
 
+// kMinTileNoise (half an 8-bit level) in steps, written so that it is exact:
+// (0.5 / 255) x kMeanSteps in floating point need not be.
+constexpr double kMinNoiseSteps = 0.5 * 256.0;
+
 std::vector<float> tile_noise(const SkipReference& r) {
     const Image& first = r.deviation.at(0);
     const int tx = skip_tiles_x(first.width), ty = skip_tiles_y(first.height), C = first.channels;
@@ -88,7 +92,7 @@ std::vector<float> tile_noise(const SkipReference& r) {
                 for (int x = x0; x < x1; ++x)
                     for (int c = 0; c < C; ++c) sum += double(dev.at(y, x, c)) * double(dev.at(y, x, c));
             const double rms = std::sqrt(sum / double((x1 - x0) * (y1 - y0) * C));
-            out[k * tiles + std::size_t(t)] = float(std::max(rms, kMinTileNoise));
+            out[k * tiles + std::size_t(t)] = float(std::max(rms * kMeanSteps, kMinNoiseSteps));
         }
     }
     return out;
@@ -96,9 +100,10 @@ std::vector<float> tile_noise(const SkipReference& r) {
 
 namespace {
 
+// A sample in steps (kMeanSteps to the unit): an 8-bit level is 256 of them, exactly.
 double sample(const FrameView& f, std::size_t i) {
-    return f.type == PixelType::U8 ? double(static_cast<const std::uint8_t*>(f.data)[i]) / 255.0
-                                   : double(static_cast<const float*>(f.data)[i]);
+    return f.type == PixelType::U8 ? double(static_cast<const std::uint8_t*>(f.data)[i]) * 256.0
+                                   : double(static_cast<const float*>(f.data)[i]) * kMeanSteps;
 }
 
 // The largest distance(k, i) / noise of its tile and setting, per tile.
@@ -126,7 +131,7 @@ std::vector<double> tile_scores(const SkipReference& r, std::size_t frames, doub
 
 std::vector<double> change_scores_reference(std::span<const FrameView> frames, const SkipReference& r) {
     return tile_scores(r, frames.size(), 1.0, [&](std::size_t k, std::size_t i) {
-        return std::abs(sample(frames[k], i) - double(skip_mean_fixed(r.mean.at(k).data[i])) / kMeanSteps);
+        return std::abs(sample(frames[k], i) - double(skip_mean_fixed(r.mean.at(k).data[i])));
     });
 }
 

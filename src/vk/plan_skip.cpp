@@ -72,7 +72,7 @@ void SkipState::set_reference(int sensor, const SkipReference& reference) {
     // Distances reach the kernel in fixed-point steps.
     const std::vector<float> noise = tile_noise(reference);
     float* inv = static_cast<float*>(inv_noise_.mapped()) + std::size_t(sensor) * K * tiles;
-    for (std::size_t i = 0; i < noise.size(); ++i) inv[i] = float(1.0 / (double(noise[i]) * kMeanSteps));
+    for (std::size_t i = 0; i < noise.size(); ++i) inv[i] = float(1.0 / double(noise[i]));  // steps, as the means
     std::vector<ImageD> means_d;
     for (const Image& m : reference.mean) means_d.push_back(convert<double>(m));
     fused_[std::size_t(sensor)] = convert<float>(fuse_reference(means_d, cfg_.fusion));

@@ -88,20 +88,25 @@ Image background_deviation(std::span<const FrameView> frames, const Image& mean)
 int skip_tiles_x(int width);
 int skip_tiles_y(int height);
 
-// Each tile's noise under each setting: the root mean square of the
-// deviation over the tile's samples, at least kMinTileNoise. K x tiles
-// values, setting-major (tile t of setting k at k * tiles + t), tiles row-major.
-std::vector<float> tile_noise(const SkipReference& reference);
-
 // Means are compared at 1/256 of an 8-bit level: the device holds them as
 // 16-bit fixed point, round(mean x 255 x 256) clamped to 0..65535.
 inline constexpr double kMeanSteps = 255.0 * 256.0;
 std::uint16_t skip_mean_fixed(float mean);
 
+// Each tile's noise under each setting, in steps of 1/256 of an 8-bit level
+// (the means' fixed point): the root mean square of the deviation over the
+// tile's samples times kMeanSteps, at least kMinTileNoise's 128 steps. In
+// those units a change over a noiseless background scores exactly (4 levels:
+// 1024 / 128 = 8), so a score equal to the threshold is one. K x tiles
+// values, setting-major (tile t of setting k at k * tiles + t), tiles row-major.
+std::vector<float> tile_noise(const SkipReference& reference);
+
+
 // The change score of every tile (row-major): the largest |frame_k - mean_k|
 // over the tile's samples and the K frames (mean_k as skip_mean_fixed holds
-// it), divided by the tile's noise under setting k. In double precision: what
-// the device's scores are tested against. Frames are U8 (v / 255) or F32.
+// it), divided by the tile's noise under setting k, both in steps. In double
+// precision: what the device's scores are tested against. Frames are U8
+// (v x 256 steps) or F32 (v x kMeanSteps).
 std::vector<double> change_scores_reference(std::span<const FrameView> frames, const SkipReference& reference);
 
 // SkipPolicy::Static: each tile's largest |frame_k - previous_k| against the
