@@ -94,5 +94,16 @@ TEST_F(VulkanMaxAbsTies, FirstAndLastOfThreeTieToTheFirst) {
         check_ties(ctx(), spec, {a, half, neg, neg, half, a}, 3, {a, neg});
 }
 
+// The same on frames whose width is a multiple of 4, where the rule and the
+// Laplacian kernels take their vector paths (four pixels an invocation): every
+// lane of a quad meets an exact tie.
+TEST_F(VulkanMaxAbsTies, TiesGoToTheFirstOnWholeQuadsToo) {
+    const ImageD a = signed_image(80, 96, 3, 9), neg = scaled(a, -1.0), half = scaled(a, 0.5);
+    for (const FusionSpec& spec : every_pyramid_and_wavelet_max_abs()) {
+        check_ties(ctx(), spec, {a, neg, neg, a}, 2, {a, neg});
+        check_ties(ctx(), spec, {a, half, neg, neg, half, a}, 3, {a, neg});
+    }
+}
+
 }  // namespace
 }  // namespace vkfuse::test
