@@ -69,9 +69,10 @@ lavapipe_from_backports() {
     fi
 }
 
+# build [TARGET...]: everything, or only the targets named (and what they need).
 build() {
     cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVKFUSE_HIL=$HIL_CMAKE >/dev/null
-    cmake --build build -j"$(nproc)"
+    cmake --build build -j"$(nproc)" ${1:+--target "$@"}
 }
 
 run_main_job() {
@@ -89,10 +90,10 @@ run_tests() {
 }
 
 case "${1:-}" in
-    run) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build; run_main_job ;;
+    run) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build vkfuse_cli; run_main_job ;;
     test) install_missing "${PACKAGES[@]}" "${PYTHON_TEST_PACKAGES[@]}" "${HIL_PACKAGES[@]}"; lavapipe_from_backports
           build; run_tests ;;
-    bench) install_missing "${PACKAGES[@]}" "${PEER_PACKAGES[@]}"; lavapipe_from_backports; build
+    bench) install_missing "${PACKAGES[@]}" "${PEER_PACKAGES[@]}"; lavapipe_from_backports; build vkfuse-bench
            ./build/bench/vkfuse-bench --json bench.json ;;
     *) echo "usage: bash tools/quickstart.sh run|test|bench" >&2; exit 2 ;;
 esac
