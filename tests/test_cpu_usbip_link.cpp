@@ -170,5 +170,34 @@ TEST(UsbipLink, AnUnlinkThatOvertakesItsTransferCancelsItWhenItArrives) {
     EXPECT_FALSE(device.next_in(kBulkEp, 0.05));
 }
 
+// A link plugged into a port vhci has just let go of may be sent the old
+// device's cancellations: transfers this link never had. Held for a submit
+// that never comes, they would keep usbcore waiting for ever (the device never
+// re-enumerates). Before any submit, an unlink is answered at once; once
+// submits flow, one is answered as soon as a later-numbered submit shows its
+// transfer will not come (vhci sends a port's submits in order).
+TEST(UsbipLink, UnlinksOfTransfersThatCannotComeAreAnsweredAtOnce) {
+    Host host;
+    UsbipDevice device(no_control, host.device_end());
+    host.unlink(1001, 900);  // before any submit on this link
+    const Host::Reply first = host.next();
+    EXPECT_EQ(first.command, kRetUnlink);
+    EXPECT_EQ(first.seqnum, 1001u);
+    EXPECT_EQ(first.status, -ECONNRESET);
+    host.submit_in(900, 8);  // should it come after all, it is not answered
+    submit_and_complete(host, device, 1002);
+    host.unlink(1004, 1003);  // held: 1003 may still come ...
+    host.submit_in(1005, 8);  // ... until a later one does
+    const Host::Reply passed = host.next();
+    EXPECT_EQ(passed.command, kRetUnlink);
+    EXPECT_EQ(passed.seqnum, 1004u);
+    EXPECT_EQ(passed.status, -ECONNRESET);
+    ASSERT_TRUE(device.next_in(kBulkEp, 5.0));
+    ASSERT_TRUE(device.complete_in(kBulkEp, std::vector<std::uint8_t>(8)));
+    const Host::Reply served = host.next();
+    EXPECT_EQ(served.command, kRetSubmit);
+    EXPECT_EQ(served.seqnum, 1005u);
+}
+
 }  // namespace
 }  // namespace vkfuse::test

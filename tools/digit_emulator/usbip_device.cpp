@@ -14,8 +14,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "vkfuse/core/error.hpp"
 
@@ -59,8 +61,32 @@ bool write_all(int fd, const std::uint8_t* p, std::size_t n) {
     return true;
 }
 
+// The USB device usbcore made for high-speed port `port` of vhci
+// ("<vhci>/usbN/N-<port + 1>", on the bus whose speed is 480 Mb/s): there
+// until usbcore has removed it, which it does only once every transfer of it
+// has been given back.
+bool port_device_exists(const std::string& vhci, int port) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (const fs::directory_entry& bus : fs::directory_iterator(vhci, ec)) {
+        const std::string name = bus.path().filename().string();
+        if (name.rfind("usb", 0) != 0) continue;
+        std::ifstream speed(bus.path() / "speed");
+        int mbps = 0;
+        if (!(speed >> mbps) || mbps != 480) continue;
+        return fs::exists(bus.path() / (name.substr(3) + "-" + std::to_string(port + 1)), ec);
+    }
+    return false;
+}
+
 // vhci's status lists its ports, one per line: "hs  0003 004 000 00000000 ...":
-// hub, port, state, speed, device id, ... The first free high-speed one.
+// hub, port, state, speed, device id, ... The high-speed ports free for a new
+// device: vhci marks a port free (state 4) as soon as it has shut the old
+// connection down, before usbcore has removed the old device and cancelled
+// its transfers; a device attached in between would get the old device's
+// cancellations and leftover submits on its own link (they belong to no
+// transfer it knows, and usbcore waits for their answers for ever). So a
+// port counts as free only once its old device is gone too.
 std::vector<int> free_high_speed_ports(const std::string& vhci) {
     std::ifstream status(vhci + "/status");
     if (!status) throw Error(ErrorKind::Device, vhci + "/status: cannot read (is vhci_hcd loaded?)");
@@ -71,9 +97,15 @@ std::vector<int> free_high_speed_ports(const std::string& vhci) {
         std::string hub;
         int port = -1;
         unsigned state = 0;
-        if (fields >> hub >> port >> state && hub == "hs" && state == kPortFree) out.push_back(port);
+        if (fields >> hub >> port >> state && hub == "hs" && state == kPortFree && !port_device_exists(vhci, port))
+            out.push_back(port);
     }
     return out;
+}
+
+bool port_free(const std::string& vhci, int port) {
+    const std::vector<int> free = free_high_speed_ports(vhci);
+    return std::find(free.begin(), free.end(), port) != free.end();
 }
 
 }  // namespace
@@ -105,7 +137,9 @@ UsbipDevice::Link UsbipDevice::attach(const std::string& vhci) {
 }
 
 UsbipDevice::UsbipDevice(ControlHandler on_control, std::string vhci)
-    : UsbipDevice(std::move(on_control), attach(vhci)) {}
+    : UsbipDevice(std::move(on_control), attach(vhci)) {
+    vhci_ = std::move(vhci);
+}
 
 UsbipDevice::UsbipDevice(ControlHandler on_control, int link_fd)
     : UsbipDevice(std::move(on_control), Link{link_fd, -1}) {}
@@ -128,6 +162,20 @@ void UsbipDevice::unplug() {
     thread_.join();
     ::close(fd_);
     fd_ = -1;
+    // Unplugged is when the host is done with the device: its port free and
+    // usbcore's device removed (seconds under emulation on a loaded host), so
+    // that whoever plugs next finds a clean port. Bounded: a host that never
+    // lets go is reported, not waited for.
+    if (port_ < 0) return;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!port_free(vhci_, port_)) {
+        if (std::chrono::steady_clock::now() > deadline) {
+            std::fprintf(stderr, "digit-emulator: port %d of %s still busy 60 s after the unplug\n", port_,
+                         vhci_.c_str());
+            return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
 }
 
 bool UsbipDevice::plugged() const {
@@ -151,6 +199,16 @@ bool UsbipDevice::serve_one() {
     if (command == kCmdUnlink) {
         const std::uint32_t victim = word(h, 20);
         std::lock_guard lock(mutex_);
+        if (!any_submit_) {
+            // Nothing submitted on this link yet: the transfer is not this
+            // link's to hold (one of a device vhci had on the port before).
+            // Answered as cancelled, so its owner is not left waiting; should
+            // its submit come after all, it is dropped unanswered.
+            answered_unlinks_.insert(victim);
+            send(kRetUnlink, seqnum, kUnlinked, {}, 0);
+            if (trace_) std::fprintf(stderr, "usbip: unlink %u of %u before any submit: %d\n", seqnum, victim, kUnlinked);
+            return true;
+        }
         if (std::int32_t(victim - last_submit_) > 0) {
             // Not submitted yet: vhci sends the unlinks it has queued after
             // the submits, so a transfer submitted and cancelled between two
@@ -193,11 +251,24 @@ bool UsbipDevice::serve_one() {
     {
         std::lock_guard lock(mutex_);
         last_submit_ = seqnum;
+        any_submit_ = true;
+        if (answered_unlinks_.erase(seqnum) > 0) return true;  // the host already has it back
         if (const auto it = early_unlinks_.find(seqnum); it != early_unlinks_.end()) {
             send(kRetUnlink, it->second, kUnlinked, {}, 0);
             if (trace_) std::fprintf(stderr, "usbip: unlink %u of %u: %d\n", it->second, seqnum, kUnlinked);
             early_unlinks_.erase(it);
             return true;
+        }
+        // vhci sends a port's submits in the order of their numbers: a held
+        // unlink of an earlier number waits for a submit that never comes.
+        for (auto it = early_unlinks_.begin(); it != early_unlinks_.end();) {
+            if (std::int32_t(it->first - seqnum) >= 0) {
+                ++it;
+                continue;
+            }
+            send(kRetUnlink, it->second, kUnlinked, {}, 0);
+            if (trace_) std::fprintf(stderr, "usbip: unlink %u of %u, passed by %u: %d\n", it->second, it->first, seqnum, kUnlinked);
+            it = early_unlinks_.erase(it);
         }
     }
     if (ep == 0) {

@@ -19,6 +19,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <thread>
@@ -47,8 +48,9 @@ using ControlHandler = std::function<ControlReply(const SetupPacket&, std::span<
 class UsbipDevice {
 public:
     // Plugs the device into the first free high-speed port of `vhci` (its
-    // sysfs directory) and serves it on a thread of its own; on_control runs
-    // there.
+    // sysfs directory; free: vhci has let the port go and usbcore has removed
+    // the device it had) and serves it on a thread of its own; on_control
+    // runs there.
     explicit UsbipDevice(ControlHandler on_control, std::string vhci = "/sys/devices/platform/vhci_hcd.0");
     // Serves a link already connected, taking link_fd: the other end of a
     // socket pair, which plays vhci (tests). port() is -1.
@@ -67,7 +69,10 @@ public:
     std::optional<std::size_t> complete_in(unsigned ep, std::span<const std::uint8_t> data);
     bool plugged() const;
     int port() const { return port_; }
-    // Pulls the cable: closes the link; the host sees the device go.
+    // Pulls the cable: closes the link; the host sees the device go. On vhci,
+    // returns once the host is done with it (its port free, usbcore's device
+    // removed; at most a minute), so that a device plugged next finds a
+    // clean port.
     void unplug();
 
 private:
@@ -89,11 +94,16 @@ private:
     bool trace_;  // VKFUSE_USBIP_TRACE set: every bulk transfer and cancellation on stderr
     int fd_ = -1;
     int port_ = -1;
+    std::string vhci_;  // its sysfs directory; empty for a link the caller connected
 
     mutable std::mutex mutex_;  // everything below; held while a reply is written
     std::condition_variable arrived_;
     std::map<unsigned, std::deque<Pending>> pending_;  // per IN endpoint, oldest first
     std::uint32_t last_submit_ = 0;                    // the newest CMD_SUBMIT's seqnum
+    bool any_submit_ = false;                          // a CMD_SUBMIT came on this link
+    // Transfers cancelled before this link saw any submit, answered at once;
+    // a submit of one of them is dropped.
+    std::set<std::uint32_t> answered_unlinks_;
     // CMD_UNLINKs that came before the submit they cancel: its seqnum -> theirs.
     std::map<std::uint32_t, std::uint32_t> early_unlinks_;
     bool up_ = false;
