@@ -92,7 +92,7 @@ phase "initramfs ($(du -h "$work/initrd.gz" | cut -f1))"
 
 # 3. Boot, run, read the status back from the console.
 log="$cache/console.log"
-timeout 280 qemu-system-x86_64 -cpu max -smp 2 -m 1536 -no-reboot -nographic \
+timeout 840 qemu-system-x86_64 -cpu max -smp 2 -m 1536 -no-reboot -nographic \
     -kernel "$vmlinuz" -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" </dev/null >"$log" 2>&1 || true
 tr -d '\r' <"$log" | sed -n '/^hil\|^\[ *RUN\|^\[ *OK\|^\[ *FAILED\|^\[==\|^\[ *PASSED\|Failure\|Expected\|Which is\|exception\|error\|v4l2-compliance\|Total for\|digit-emulator\|^{/p' | grep -v '^hil-exit-status'
 status=$(tr -d '\r' <"$log" | sed -n 's/^hil-exit-status \([0-9]*\).*/\1/p' | tail -1)
