@@ -12,19 +12,8 @@ import numpy as np
 import pytest
 
 import vkfuse
+from device import needs_vulkan
 
-
-def vulkan_available():
-    try:
-        vkfuse.fuse([np.zeros((8, 8)), np.ones((8, 8))], method="brovey", backend="vulkan")
-        return True
-    except vkfuse.Error as e:
-        if "no usable Vulkan device" in str(e):
-            return False
-        raise
-
-
-needs_vulkan = pytest.mark.skipif(not vulkan_available(), reason="no usable Vulkan device")
 
 
 def run_python(code, timeout=240):

@@ -16,6 +16,7 @@ import vkfuse
 
 sys.path.insert(0, os.environ.get("VKFUSE_PEERS", os.path.join(os.path.dirname(__file__), "../../bench/peers")))
 import pipelines  # noqa: E402  (the peers)
+from device import needs_vulkan  # noqa: E402  (tests/python/device.py)
 
 H, W = 96, 128
 
@@ -29,18 +30,6 @@ def scene(seed, channels=3):
     img = base[..., None] * tint + 0.05 * rng.standard_normal((H, W, channels))
     return np.clip(img, 0, 1)
 
-
-def vulkan_available():
-    try:
-        vkfuse.fuse([scene(0)[:8, :8], scene(1)[:8, :8]], method="brovey", backend="vulkan")
-        return True
-    except vkfuse.Error as e:
-        if "no usable Vulkan device" in str(e):
-            return False
-        raise
-
-
-needs_vulkan = pytest.mark.skipif(not vulkan_available(), reason="no usable Vulkan device")
 
 PEERS = {
     "wavelet": lambda f, levels, wavelet: pipelines.wavelet(f, wavelet, levels),
