@@ -1,6 +1,6 @@
 // What a command prints on stdout is one of its results: on a full device
 // (/dev/full) every command fails with one line, and one that publishes files
-// publishes nothing.
+// (run, sim, study, tune) publishes nothing.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "cli_runner.hpp"
+#include "study_dataset.hpp"
 
 namespace vkfuse::test {
 namespace {
@@ -25,7 +26,7 @@ CliResult run_onto_full_device(const std::vector<std::string>& args) {
 
 TEST(CliStdout, EveryCommandFailsOnAFullDevice) {
     TempDir tmp;
-    write_bytes(tmp.file("config.json"), "{}");
+    write_study_dataset(tmp.file("dataset"));
     const std::vector<std::vector<std::string>> commands{
         {"--help"},
         {"--version"},
@@ -35,6 +36,8 @@ TEST(CliStdout, EveryCommandFailsOnAFullDevice) {
         {"sim", "--out", tmp.file("set"), "--objects", "coin", "--grid", "0,15", "--frames", "1"},
         {"run", "--virtual-clock", "--cycles", "1", "--backend", "cpu", "--method", "brovey", "--out", tmp.file("o")},
         {"metrics", VKFUSE_TEST_DATA "/demo_white.png"},
+        {"study", tmp.file("dataset"), "--max-k", "2", "--backend", "cpu", "--out", tmp.file("study")},
+        {"tune", "--dataset", tmp.file("dataset"), "--max-k", "2", "--backend", "cpu", "--out", tmp.file("c.json")},
     };
     for (const auto& args : commands) {
         std::string line;
@@ -48,6 +51,8 @@ TEST(CliStdout, EveryCommandFailsOnAFullDevice) {
     }
     EXPECT_FALSE(std::filesystem::exists(tmp.file("set")));
     EXPECT_FALSE(std::filesystem::exists(tmp.file("o")));
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("study")));
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("c.json")));
     EXPECT_EQ(staging_directory(tmp.file("")), "");
 }
 

@@ -272,11 +272,13 @@ void require_results(const Session& s, const RunStats& stats, bool interrupted) 
     }
     if (!s.recorder) return;
     for (std::size_t i = 0; i < s.sensors.rig.size(); ++i)
-        if (stats.fused(i) == 0)
+        if (stats.fused(i) == 0) {
+            const std::string& why = stats.last_error(i);
             throw Error(ErrorKind::InvalidArgument,
                         "--record " + s.record_dir->target() + ": " + s.sensors.rig[i].sensor->info().serial +
-                            " delivered no whole cycle, so the recording could not be replayed; nothing written" +
-                            left_as_they_were(s));
+                            " delivered no whole cycle" + (why.empty() ? "" : " (" + why + ")") +
+                            ", so the recording could not be replayed; nothing written" + left_as_they_were(s));
+        }
 }
 
 int run(const Args& args) {

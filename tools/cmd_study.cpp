@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "staged_directory.hpp"
+#include "standard_output.hpp"
 #include "stop_signal.hpp"
 #include "study_options.hpp"
 #include "study_output.hpp"
@@ -92,12 +93,15 @@ int run(const Args& args) {
     const StudyResult result = run_study(dataset, options, context ? &*context : nullptr);
     progress.finish();
     write_study(staged.path(), dataset_dir, result);
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.1f", result.seconds);
+    // Reported before it is published: a report that cannot be delivered
+    // fails the command with nothing published.
+    print_checked(dataset_dir + ": " + std::to_string(result.combinations) + " combinations x " +
+                  counted(result.methods.size(), "method") + " on " + counted(result.objects.size(), "object") +
+                  " in " + seconds + " s; most likely to improve every metric: " + result.best_method +
+                  "; report in " + out + "/report.md\n");
     staged.publish();
-    std::printf("%s: %zu combinations x %s on %s in %.1f s; most likely to improve every metric: "
-                "%s; report in %s/report.md\n",
-                dataset_dir.c_str(), result.combinations, counted(result.methods.size(), "method").c_str(),
-                counted(result.objects.size(), "object").c_str(), result.seconds,
-                result.best_method.c_str(), out.c_str());
     return 0;
 }
 

@@ -17,6 +17,7 @@
 #include "run_sensors.hpp"
 #include "sim_record.hpp"
 #include "staged_directory.hpp"
+#include "standard_output.hpp"
 #include "stop_signal.hpp"
 #include "study_options.hpp"
 #include "vkfuse/core/error.hpp"
@@ -230,12 +231,15 @@ int run(const Args& args) {
     progress.finish();
     const RunConfig config = winner(result);
     const std::string text = run_config_json(config, tuned_json(result, source));
+    char gains[160];
+    std::snprintf(gains, sizeof gains, "sharpness x%.3f, contrast x%.3f, background difference x%.3f%s",
+                  result.best.gain.sharpness, result.best.gain.contrast, result.best.gain.background_diff,
+                  result.best_improves_all_objects ? ", better on every object" : "");
+    // Reported before the file is written: a report that cannot be delivered
+    // fails the command with nothing written.
+    print_checked(out + ": " + to_string(config.sequence) + " fused by " + result.best_best_method + " (" + gains +
+                  "); vkfuse run --config " + out + "\n");
     io::write_atomically(out, [&](std::FILE* f) { io::write_all(f, text, out); });
-    std::printf("%s: %s fused by %s (sharpness x%.3f, contrast x%.3f, background difference x%.3f%s); "
-                "vkfuse run --config %s\n",
-                out.c_str(), to_string(config.sequence).c_str(), result.best_best_method.c_str(),
-                result.best.gain.sharpness, result.best.gain.contrast, result.best.gain.background_diff,
-                result.best_improves_all_objects ? ", better on every object" : "", out.c_str());
     return 0;
 }
 

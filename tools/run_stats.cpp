@@ -32,6 +32,7 @@ void RunStats::add(const CycleResult& cycle, double write_s) {
         const SensorCycle& s = cycle.sensors[i];
         if (s.status != SensorStatus::Ok) {
             errors_.insert(s.error);
+            sensors_[i].last_error = s.error;
             continue;
         }
         ++last_ok_;

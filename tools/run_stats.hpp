@@ -19,6 +19,8 @@ public:
     std::uint64_t cycles() const { return cycles_; }
     std::uint64_t fused() const { return fused_; }  // sensor-cycles fused from fresh frames
     std::uint64_t fused(std::size_t sensor) const { return sensors_.at(sensor).fused; }
+    // The last error the sensor reported ("" when none).
+    const std::string& last_error(std::size_t sensor) const { return sensors_.at(sensor).last_error; }
     const std::set<std::string>& errors() const { return errors_; }
     // Sensor time the fused frames span so far (the widest over sensors).
     double sensor_elapsed_s() const;
@@ -35,6 +37,7 @@ private:
     struct PerSensor {
         std::uint64_t fused = 0;
         double first_ts = 0, last_ts = 0;
+        std::string last_error;
     };
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     SkipConfig skip_;

@@ -336,23 +336,24 @@ private:
 
 // The library names what it refuses as the command line spells it (--levels,
 // --base-rule/--detail-rule); in Python those are keyword arguments (levels,
-// base_rule). An option is "--" and a lower-case letter at the start of the
-// message or after a space, '(' or '/'; a file name with "--" inside keeps it.
-std::string python_words(const std::string& message) {
-    std::string out;
-    for (std::size_t i = 0; i < message.size(); ++i) {
-        const bool starts = i == 0 || message[i - 1] == ' ' || message[i - 1] == '(' || message[i - 1] == '/';
-        if (starts && message.compare(i, 2, "--") == 0 && i + 2 < message.size() && message[i + 2] >= 'a' &&
-            message[i + 2] <= 'z') {
-            std::size_t j = i + 2;
-            for (; j < message.size() && ((message[j] >= 'a' && message[j] <= 'z') || message[j] == '-'); ++j)
-                out += message[j] == '-' ? '_' : message[j];
-            i = j - 1;
-            continue;
+// base_rule). Only these option names are rewritten, and only as whole words,
+// so a path or a value that contains "--" reads as given.
+std::string python_words(std::string message) {
+    static constexpr const char* kOptions[] = {"--levels", "--wavelet", "--mode",    "--method",
+                                               "--base-rule", "--detail-rule", "--metrics", "--backend"};
+    // Letters, '-', '_' extend a word; a '"' opens or closes a value the user gave.
+    const auto word_char = [](char c) { return (c >= 'a' && c <= 'z') || c == '-' || c == '_' || c == '"'; };
+    for (const char* option : kOptions) {
+        const std::string name(option);
+        for (std::size_t at = message.find(name); at != std::string::npos; at = message.find(name, at + 1)) {
+            const std::size_t end = at + name.size();
+            if ((at > 0 && word_char(message[at - 1])) || (end < message.size() && word_char(message[end]))) continue;
+            std::string keyword = name.substr(2);
+            for (char& c : keyword) c = c == '-' ? '_' : c;
+            message.replace(at, name.size(), keyword);
         }
-        out += message[i];
     }
-    return out;
+    return message;
 }
 
 }  // namespace

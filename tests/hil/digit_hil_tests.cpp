@@ -214,6 +214,12 @@ TEST(HilDigit, UnplugFailsTheSensorWhileTheOtherStreamsAndReplugReopensItBySeria
     const auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     shell(env("VKFUSE_HIL_UNPLUG"));
     std::printf("hil: %.2f s unplugged\n", since());
+    // A slow (loaded) host may first let a grab time out (Timeout) before
+    // the unplug reaches the driver, and after the replug before the first
+    // frame of the reopened stream: waits, not failures. Anything else is.
+    const auto transient = [](const Error& e) {
+        return e.kind() == ErrorKind::Unplugged || e.kind() == ErrorKind::Timeout;
+    };
     bool unplugged = false;
     for (int i = 0; i < 200 && !unplugged; ++i) {
         try {
@@ -221,7 +227,7 @@ TEST(HilDigit, UnplugFailsTheSensorWhileTheOtherStreamsAndReplugReopensItBySeria
         } catch (const Error& e) {
             unplugged = e.kind() == ErrorKind::Unplugged;
             std::printf("hil: %.2f s grab: %s\n", since(), e.what());
-            if (!unplugged) ADD_FAILURE() << e.what();
+            if (!transient(e)) ADD_FAILURE() << e.what();
         }
     }
     ASSERT_TRUE(unplugged);
@@ -238,7 +244,7 @@ TEST(HilDigit, UnplugFailsTheSensorWhileTheOtherStreamsAndReplugReopensItBySeria
             break;
         } catch (const Error& e) {
             std::printf("hil: %.2f s grab: %s\n", since(), e.what());
-            ASSERT_EQ(e.kind(), ErrorKind::Unplugged) << e.what();
+            ASSERT_TRUE(transient(e)) << e.what();
         }
     }
     std::printf("hil: %.2f s frames again (reopened %llu time)\n", since(),

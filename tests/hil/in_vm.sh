@@ -56,13 +56,24 @@ vkfuse_hil_tests --gtest_filter='HilDigit.Discovery*:HilDigit.OldFirmware*:HilDi
 
 # The rig over both units (settings old firmware can light too), D20001
 # unplugged mid-run and plugged back: it fails by serial while D10001 goes on,
-# and rejoins.
+# and rejoins. Each step waits for what it needs, not for a time, so a slow
+# (loaded) host changes nothing: five cycles in, the unplug; the emulator
+# says "unplugged" once the host has let the device go; the replug once the
+# rig has reported D20001 failed (each bounded at two minutes).
 vkfuse run --backend cpu --cycles 60 --background-frames 0 --method brovey --sequence 15,15,15+5,5,5 \
     --sensor D20001 --sensor D10001 --out /tmp/rig >/tmp/rig.json 2>/tmp/rig.err &
 run=$!
-for i in $(seq 1 600); do grep -q "cycle " /tmp/rig.err && break; sleep 0.1; done
-sleep 3; kill -USR1 "$pid_D20001"; echo "hil: rig: D20001 unplugged"
-sleep 3; kill -USR2 "$pid_D20001"; echo "hil: rig: D20001 plugged back"
+staged_metrics() { cat /tmp/.vkfuse-partial-*/metrics.jsonl 2>/dev/null; }
+wait_for() {  # what, command: polls command every 0.1 s for two minutes
+    for i in $(seq 1 1200); do eval "$2" && return 0; sleep 0.1; done
+    echo "hil: rig: $1 did not happen within two minutes"; failed=1; return 1
+}
+unplugs=$(grep -c "unplugged D20001" /tmp/emulator-D20001.log)
+wait_for "five cycles" '[ "$(staged_metrics | wc -l)" -ge 10 ]'
+kill -USR1 "$pid_D20001"; echo "hil: rig: D20001 unplugged at $(cut -d' ' -f1 /proc/uptime) s"
+wait_for "the unplug" '[ "$(grep -c "unplugged D20001" /tmp/emulator-D20001.log)" -gt "$unplugs" ]'
+wait_for "D20001 failed" 'staged_metrics | grep -q "\"sensor\": \"D20001\", \"status\": \"failed\""'
+kill -USR2 "$pid_D20001"; echo "hil: rig: D20001 plugged back at $(cut -d' ' -f1 /proc/uptime) s"
 wait $run || { failed=1; tail -3 /tmp/rig.err | sed 's/^/hil: rig: /'; }
 for s in D20001 D10001; do  # each sensor's statuses, cycle by cycle, runs of one status joined: "ok x12, failed x5, ..."
     runs=$(sed -n "s/.*\"sensor\": \"$s\", \"status\": \"\([a-z]*\)\".*/\1/p" /tmp/rig/metrics.jsonl |
