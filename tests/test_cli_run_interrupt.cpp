@@ -35,7 +35,7 @@ int exit_status(pid_t pid) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-// The quick start's own run passes --replace. Interrupted while its four
+// The quick start's own run passes --replace. Interrupted while its two
 // sensors still take their backgrounds (20 frames under each setting, seconds
 // of rendering), a run has fused nothing: it fails, the previous run's
 // directory keeps its files and no recording appears, for Ctrl-C and SIGTERM.
@@ -48,7 +48,7 @@ TEST(CliRunInterrupt, AnInterruptBeforeTheFirstCycleReplacesNothing) {
     ASSERT_EQ(count_lines(before), 5u);
     for (int sig : {SIGINT, SIGTERM}) {
         SCOPED_TRACE(sig == SIGINT ? "SIGINT" : "SIGTERM");
-        const pid_t pid = start_cli({"run", "--virtual-clock", "--sensors", "4", "--cycles", "100", "--backend",
+        const pid_t pid = start_cli({"run", "--virtual-clock", "--sensors", "2", "--cycles", "100", "--backend",
                                      "cpu", "--method", "brovey", "--out", tmp.file("rp"), "--replace", "--record",
                                      tmp.file("rec")},
                                     tmp.file("stdout"), tmp.file("stderr"));
