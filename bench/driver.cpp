@@ -172,7 +172,7 @@ CellResult measure(Environment& env, const Options& o, const Cell& c, const Inpu
     }
     if (c.backend == Backend::Vulkan && env.copy) r.copy_bandwidth = env.copy->bytes_per_second();
     if (c.backend == Backend::Vulkan && env.access) {
-        r.kernel_copy_ns = env.access->address_ns;
+        r.kernel_copy_ns = env.access->device_addresses ? env.access->address_ns : env.access->bound_ns;
         r.floor_ms = floor_ms(ideal_pipeline(c, false), *env.access);  // the bench uploads float32 frames
     }
     r.load_average = load;

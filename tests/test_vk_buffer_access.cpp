@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <cstring>
@@ -88,19 +89,41 @@ std::string describe(const FusionSpec& spec, const Shape& s) {
            (s.input == PixelType::U8 ? " u8" : " f32") + (s.precision == Precision::Fp16Storage ? " fp16" : "");
 }
 
-void expect_same_bits(const Results& a, const Results& b, const std::string& what) {
+// Images within `ulps` of each other (of the larger magnitude): the same bits at 0.
+void expect_within_ulps(const std::vector<float>& a, const std::vector<float>& b, double ulps, const std::string& what) {
+    ASSERT_EQ(a.size(), b.size()) << what;
+    if (ulps == 0) {
+        EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float))) << what;
+        return;
+    }
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const float larger = std::max(std::fabs(a[i]), std::fabs(b[i]));
+        const double ulp = double(std::nextafter(larger, INFINITY) - larger);
+        ASSERT_LE(std::fabs(double(a[i]) - double(b[i])), ulps * ulp) << what << " at " << i;
+    }
+}
+
+void expect_close_metric(double a, double b, double ulps, const std::string& what) {
+    if (ulps == 0)
+        EXPECT_EQ(a, b) << what;
+    else
+        EXPECT_LE(std::fabs(a - b), 1e-5 * std::max(std::fabs(a), std::fabs(b)) + 1e-12) << what;
+}
+
+// Results of differently compiled kernels (bound and addressed variants):
+// the same bits on a CPU device, within module_ulps() on a GPU.
+void expect_same_results(const Results& a, const Results& b, double ulps, const std::string& what) {
     ASSERT_EQ(a.fused.size(), b.fused.size()) << what;
     for (std::size_t sensor = 0; sensor < a.fused.size(); ++sensor) {
-        const Image& fa = a.fused[sensor];
-        const Image& fb = b.fused[sensor];
-        ASSERT_EQ(fa.data.size(), fb.data.size()) << what;
-        EXPECT_EQ(0, std::memcmp(fa.data.data(), fb.data.data(), fa.data.size() * sizeof(float)))
-            << what << " sensor " << sensor;
+        const std::string where = what + " sensor " + std::to_string(sensor);
+        expect_within_ulps(a.fused[sensor].data, b.fused[sensor].data, ulps, where);
         const Metrics& ma = a.metrics[sensor];
         const Metrics& mb = b.metrics[sensor];
-        EXPECT_EQ(ma.sharpness, mb.sharpness) << what << " sensor " << sensor;
-        EXPECT_EQ(ma.contrast, mb.contrast) << what << " sensor " << sensor;
-        EXPECT_EQ(ma.background_diff, mb.background_diff) << what << " sensor " << sensor;
+        expect_close_metric(ma.sharpness, mb.sharpness, ulps, where + " sharpness");
+        expect_close_metric(ma.contrast, mb.contrast, ulps, where + " contrast");
+        ASSERT_EQ(ma.background_diff.has_value(), mb.background_diff.has_value()) << where;
+        if (ma.background_diff)
+            expect_close_metric(*ma.background_diff, *mb.background_diff, ulps, where + " background diff");
     }
 }
 
@@ -135,6 +158,7 @@ Results run(Context& ctx, const FusionSpec& spec, const Shape& s) {
 class VulkanBufferAccess : public VulkanTest {};
 
 TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
+    SKIP_WITHOUT_DEVICE_ADDRESSES();
     const Shape shapes[] = {{96, 256, 3, 3, 2, PixelType::U8},  // planes of whole quads
                             {96, 128, 3, 3, 1, PixelType::F32},
                             {75, 77, 3, 3, 2, PixelType::U8},  // 5775 pixels: the scalar paths
@@ -144,7 +168,8 @@ TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
     for (const FusionSpec& spec : method_specs())
         for (const Shape& s : shapes)
             if (applies(spec, s, ctx()))
-                expect_same_bits(run(ctx(), spec, s), run(addressed_context(), spec, s), describe(spec, s));
+                expect_same_results(run(ctx(), spec, s), run(addressed_context(), spec, s), module_ulps(ctx()),
+                                    describe(spec, s));
 }
 
 // A plan whose buffers exceed one binding is recorded in blocks of sensors.
@@ -163,10 +188,14 @@ TEST_F(VulkanBufferAccess, SensorBlocksGiveTheBitsOfOneBlock) {
                           {{96, 256, 3, 3, 9, PixelType::U8, Precision::Fp16Storage}, true}};
     auto& limits = vk::ContextAccess::of(narrow).properties.limits;
     const std::uint32_t full_range = limits.maxStorageBufferRange;
+    // The cases' `bound` holds for offsets aligned to 16 bytes (lavapipe's);
+    // a profile's coarser alignment may leave a case no aligned block.
+    const bool fine_alignment = limits.minStorageBufferOffsetAlignment <= 16;
     for (const FusionSpec& spec : method_specs())
         for (const Case& c : cases) {
             const Shape& s = c.shape;
             if (!applies(spec, s, ctx())) continue;
+            if (!c.bound && !has_device_addresses()) continue;  // such blocks need addresses
             PlanConfig one = config(spec, s);
             one.sensors = 1;
             limits.maxStorageBufferRange = std::uint32_t(vk::plan_buffer_bytes(one, vk::PlanKind::Fuse) * 4.5);
@@ -175,12 +204,15 @@ TEST_F(VulkanBufferAccess, SensorBlocksGiveTheBitsOfOneBlock) {
             const Results whole = run(ctx(), spec, s);
             const std::string what = describe(spec, s);
             ASSERT_FALSE(whole.addressed) << what;
-            EXPECT_EQ(blocks.addressed, !c.bound) << what;
+            if (fine_alignment) {
+                EXPECT_EQ(blocks.addressed, !c.bound) << what;
+            }
             // The blocks share one block's intermediates.
-            if (c.bound) {
+            if (!blocks.addressed) {
                 EXPECT_EQ(blocks.intermediates, whole.intermediates) << what;
             }
-            expect_same_bits(blocks, whole, what);
+            // Addressed blocks run other modules than the bound whole.
+            expect_same_results(blocks, whole, blocks.addressed ? module_ulps(ctx()) : 0, what);
         }
 }
 
@@ -188,6 +220,7 @@ TEST_F(VulkanBufferAccess, SensorBlocksGiveTheBitsOfOneBlock) {
 // means of 2K floats a pixel beside the frames, beyond what a pointwise
 // method's own buffers take. Between the two it must take device addresses.
 TEST_F(VulkanBufferAccess, SkippingPlansBeyondOneBindingTakeDeviceAddresses) {
+    SKIP_WITHOUT_DEVICE_ADDRESSES();
     Context narrow(validated_options());
     FusionSpec brovey;
     brovey.method = Method::Brovey;
@@ -247,6 +280,7 @@ TEST_F(VulkanBufferAccess, ProfiledBlocksReportEachStageOnce) {
 
 // The background model's mean, a plan kind of its own (float32 planes, one sensor).
 TEST_F(VulkanBufferAccess, BackgroundMeanBoundAndAddressedGiveTheSameBits) {
+    SKIP_WITHOUT_DEVICE_ADDRESSES();
     for (const Shape& s : {Shape{96, 256, 3, 5, 1, PixelType::F32}, Shape{75, 77, 1, 3, 1, PixelType::F32}}) {
         const std::vector<Image> floats = float_frames(s);
         std::vector<FrameView> views;
@@ -254,9 +288,8 @@ TEST_F(VulkanBufferAccess, BackgroundMeanBoundAndAddressedGiveTheSameBits) {
         BackgroundModel bound(ctx(), s.height, s.width, s.channels, s.frames, PixelType::F32);
         BackgroundModel addressed(addressed_context(), s.height, s.width, s.channels, s.frames, PixelType::F32);
         const Image a = bound.mean(views), b = addressed.mean(views);
-        ASSERT_EQ(a.data.size(), b.data.size());
-        EXPECT_EQ(0, std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)))
-            << s.height << "x" << s.width << "x" << s.channels;
+        expect_within_ulps(a.data, b.data, module_ulps(ctx()),
+                           std::to_string(s.height) + "x" + std::to_string(s.width) + "x" + std::to_string(s.channels));
     }
 }
 

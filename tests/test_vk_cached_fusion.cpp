@@ -134,6 +134,7 @@ std::string case_name(const ::testing::TestParamInfo<Case>& info) {
 // one for three sources), as the plans give them.
 TEST_P(CachedFusionTest, MatchesPlansForEveryCombination) {
     const Case c = GetParam();
+    if (c.addressed || c.max_binding_bytes == kNoSourceFits) SKIP_WITHOUT_DEVICE_ADDRESSES();
     FusionSpec spec;
     spec.method = c.method;
     spec.wavelet = c.wavelet;

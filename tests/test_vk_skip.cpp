@@ -165,6 +165,7 @@ void static_reuse(Context& context) {
 // the detection and the indirect dispatches in the kernels' "_addr" variants.
 TEST_F(VulkanSkip, StaticSensorsReuseTheirLastFusedResult) {
     static_reuse(ctx());
+    SKIP_WITHOUT_DEVICE_ADDRESSES();
     static_reuse(addressed_context());
 }
 

@@ -94,6 +94,7 @@ TEST_F(VulkanSkipTiles, ChangedTilesHaveFullFusionsBitsAndTheRestTheReferences) 
 // The kernels' device-address variants (plans beyond maxStorageBufferRange)
 // read the same records.
 TEST_F(VulkanSkipTiles, DeviceAddressesToo) {
+    SKIP_WITHOUT_DEVICE_ADDRESSES();
     FusionSpec bior44;
     bior44.levels = 2;
     check_tiles(addressed_context(), make_scene(192, 256, 3, 2, 17), bior44);

@@ -16,6 +16,7 @@ namespace vkfuse::test {
 namespace {
 
 TEST(VulkanSyncValidation, AMissingBarrierIsReportedAsAHazard) {
+    SKIP_WITHOUT_VALIDATION();
     Context& context = shared_context();
     auto& ctx = vk::ContextAccess::of(context);
     vk::Buffer buffer(ctx, 4096, vk::MemoryUse::Device);

@@ -20,14 +20,34 @@ struct ValidationLog {
 ValidationLog& validation_log();
 Context& shared_context();  // created on first use with validation on
 // Validation on, every message into validation_log(): what shared_context uses.
+// Where the layer is not installed (a GPU machine without
+// vulkan-validationlayers) the tests run without it, saying so once on stderr,
+// and the tests of validation itself skip.
 ContextOptions validated_options();
+bool validation_available();
+#define SKIP_WITHOUT_VALIDATION() \
+    if (!::vkfuse::test::validation_available()) GTEST_SKIP() << "VK_LAYER_KHRONOS_validation is not installed"
 // A validated context per filter arithmetic the device has: shared_context()
 // first, then, where the device also offers the other one, a context using it
 // (created on first use), so the path a GPU takes is tested on lavapipe too.
 std::vector<Context*> filter_arithmetic_contexts();
+// A validated context per filter arithmetic the device has, and one more for
+// compensated float32 with products split (Dekker's, what a device whose fma
+// is not fused runs): "float64", "compensated float32", "... split products".
+std::string arithmetic_name(const Context& context);
 // A validated context whose plans all reach their buffers through device
 // addresses (ContextOptions::device_addresses_only), created on first use.
+// Only where the device has them (a profile may take them away):
+// SKIP_WITHOUT_DEVICE_ADDRESSES() first.
 Context& addressed_context();
+bool has_device_addresses();
+#define SKIP_WITHOUT_DEVICE_ADDRESSES() \
+    if (!::vkfuse::test::has_device_addresses()) GTEST_SKIP() << "the device (or its profile) has no device addresses"
+// Differently compiled kernels (bound and addressed variants, one block and
+// several) may contract multiply-adds differently on a GPU: equal bits on CPU
+// devices (lavapipe), within kModuleUlps of each other elsewhere.
+inline constexpr double kModuleUlps = 8;
+double module_ulps(const Context& context);  // 0 on a CPU device, else kModuleUlps
 
 class VulkanTest : public ::testing::Test {
 protected:

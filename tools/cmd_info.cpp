@@ -17,7 +17,10 @@ constexpr CommandSpec kSpec{
     "version, whether vkfuse can use it, whether it has the 16-bit storage that\n"
     "Precision::Fp16Storage needs, the doubles of float64 filter arithmetic, and\n"
     "the memory sharing of vkfuse/vk/interop.hpp: fds between devices, host memory)\n"
-    "and the device --backend auto picks, with the filter arithmetic it uses.\n"
+    "and the device --backend auto picks, with the filter arithmetic it uses and\n"
+    "what vkfuse adapted to fit it. Then the simulated device profiles, which\n"
+    "VKFUSE_DEVICE_PROFILE=NAME applies to any command (the device seen with the\n"
+    "limits and memory of that GPU class).\n"
     "Without a Vulkan loader or device it says so: the CPU reference path is used.",
     {},
     "vkfuse info",
@@ -30,6 +33,7 @@ void print_device(const DeviceInfo& d) {
     // What vkfuse/vk/interop.hpp's shared memory needs.
     if (d.usable && d.external_memory_fd) extras += extras.empty() ? "memory fd" : ", memory fd";
     if (d.usable && d.external_memory_host) extras += extras.empty() ? "host memory" : ", host memory";
+    if (d.usable && !d.device_addresses) extras += extras.empty() ? "no device addresses" : ", no device addresses";
     if (!extras.empty()) extras = " (" + extras + " too)";
     std::printf("  [%d] %s\n      type %s, driver %s, Vulkan %s: %s%s%s\n", d.index, d.name.c_str(), d.type.c_str(),
                 d.driver.c_str(), d.api_version.c_str(), d.usable ? "usable" : "not usable: ",
@@ -44,10 +48,18 @@ void print_auto_choice() {
         const DeviceInfo& d = context.device();
         std::printf("--backend auto uses device [%d] %s, wavelet filters accumulating in %s\n", d.index, d.name.c_str(),
                     to_string(context.filter_arithmetic()).data());
+        context.splits_products();  // asks the device about fma now, so that its answer is listed
+        for (const std::string& what : context.adaptations()) std::printf("  adapted: %s\n", what.c_str());
     } catch (const Error& e) {
         if (e.kind() != ErrorKind::Device) throw;
         std::printf("--backend auto uses the CPU reference path (%s)\n", e.what());
     }
+}
+
+void print_profiles() {
+    std::string names;
+    for (const std::string& name : device_profile_names()) names += (names.empty() ? "" : ", ") + name;
+    std::printf("device profiles: %s\n", names.c_str());
 }
 
 int run(const Args& args) {
@@ -67,6 +79,7 @@ int run(const Args& args) {
     std::printf("Vulkan devices:\n");
     for (const DeviceInfo& d : devices) print_device(d);
     print_auto_choice();
+    print_profiles();
     return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "vkfuse/vk/context.hpp"
 #include "standard_output.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/version.hpp"
@@ -59,7 +60,9 @@ int dispatch(const std::vector<std::string>& argv) {
         std::fputs(help_text(command->spec).c_str(), stdout);
         return 0;
     }
-    return command->run(Args::parse(command->spec, rest));
+    const Args args = Args::parse(command->spec, rest);
+    check_vulkan_environment();  // a bad VKFUSE_DEVICE_PROFILE fails before any output
+    return command->run(args);
 }
 
 // The message on one line, however it was written.

@@ -1,24 +1,33 @@
-// A VkBuffer with its own memory, addressed from shaders by device address.
+// A VkBuffer with its own memory, bound to kernels through descriptors or
+// reached by device address.
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "vk/context_impl.hpp"
 #include "vk/device_span.hpp"
 
 namespace vkfuse::vk {
 
+// What a buffer is for, and so which memory it takes (the first type of the
+// first preference that has room; a full heap falls back to the next):
 enum class MemoryUse {
-    Device,    // working storage the host never touches
-    Upload,    // host writes, device reads (device-local when the host can see it)
-    Readback,  // device writes, host reads (host-cached when available)
+    Device,    // working storage the host never touches: device-local, else any
+    Upload,    // host writes, device reads: device-local host-visible coherent,
+               // else host-visible coherent (system memory on a discrete GPU)
+    Readback,  // device writes, host reads: host-visible cached, coherent or not
+               // (invalidate() before reading), else host-visible
 };
 
 class Buffer {
 public:
     Buffer() = default;
     Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use);
-    // Takes buffer and memory (bound, mapped at `mapped` or not) to destroy them.
-    static Buffer adopt(Context::Impl& ctx, VkBuffer buffer, VkDeviceMemory memory, VkDeviceSize bytes, void* mapped);
+    // Takes buffer and memory (allocated through ctx.memory_types as `type`,
+    // `allocation` bytes; bound, mapped at `mapped` or not) to destroy them.
+    static Buffer adopt(Context::Impl& ctx, VkBuffer buffer, VkDeviceMemory memory, std::uint32_t type,
+                        VkDeviceSize allocation, VkDeviceSize bytes, void* mapped);
     // bytes from offset of a buffer someone else owns (a caller's): used,
     // never destroyed here.
     static Buffer borrow(Context::Impl& ctx, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize bytes);
@@ -34,6 +43,14 @@ public:
     VkDeviceSize size() const { return size_; }
     void* mapped() const { return mapped_; }  // null for MemoryUse::Device
     DeviceSpan span() const { return {buffer_, offset_, size_, address_}; }
+    std::uint32_t heap() const;  // the heap its memory came from
+    // Before the host reads what the device wrote (after the fence): makes it
+    // visible in mapped() where the memory is not host-coherent.
+    void invalidate() const;
+
+    // Usage flags of every buffer the library makes (device addresses where
+    // the context has them).
+    static VkBufferUsageFlags usage(const Context::Impl& ctx);
 
 private:
     Context::Impl* ctx_ = nullptr;  // null for a borrowed range: nothing to release
@@ -43,6 +60,11 @@ private:
     VkDeviceAddress address_ = 0;  // of the buffer's first byte
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
+    std::uint32_t type_ = 0;         // visible memory type (ctx.memory_types)
+    VkDeviceSize allocation_ = 0;    // bytes allocated
+    bool coherent_ = true;           // host-coherent: no invalidation needed
+    void* memory_mapping_ = nullptr;  // the memory's own mapping where mapped_ is a shadow
+    std::unique_ptr<std::byte[]> shadow_;  // a simulated non-coherent type's host copy
 
     void release();
 };

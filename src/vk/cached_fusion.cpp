@@ -220,6 +220,7 @@ std::vector<std::vector<Metrics>> CachedFusion::score(std::span<const std::vecto
                         std::uint32_t(s % group_size * std::size_t(shape_.frames) + c[i]);
         }
         gr.slot->submit_and_wait();
+        gr.readback.invalidate();
         const float* partials = static_cast<const float*>(gr.readback.mapped());
         for (std::size_t b = 0; b < count; ++b) {
             std::vector<Metrics> row;

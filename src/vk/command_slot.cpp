@@ -158,6 +158,11 @@ std::vector<std::uint64_t> CommandSlot::timestamps(std::uint32_t count) const {
     check(ctx_.api->vkGetQueryPoolResults(ctx_.device, queries_, 0, count, count * sizeof(std::uint64_t), ticks.data(),
                                           sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
           "vkGetQueryPoolResults");
+    // Only the low timestampValidBits bits count, and the counter may wrap
+    // between two marks: each tick becomes the previous plus the masked step.
+    const std::uint32_t bits = ctx_.timestamp_bits;
+    const std::uint64_t mask = bits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << bits) - 1;
+    for (std::uint32_t i = 1; i < count; ++i) ticks[i] = ticks[i - 1] + ((ticks[i] - ticks[i - 1]) & mask);
     return ticks;
 }
 

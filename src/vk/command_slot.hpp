@@ -47,7 +47,9 @@ public:
         submit();
         wait();
     }
-    // The first `count` timestamps of the last submit, in ticks.
+    // The first `count` timestamps of the last submit, in ticks, made
+    // non-decreasing: a counter of fewer than 64 valid bits that wrapped
+    // between two of them still gives their true difference.
     std::vector<std::uint64_t> timestamps(std::uint32_t count) const;
 
 private:

@@ -6,6 +6,7 @@
 
 #include "vk/context_impl.hpp"
 #include "vk/device_info.hpp"
+#include "vk/fma_probe.hpp"
 #include "vk/shader_registry.hpp"
 #include "vkfuse/core/error.hpp"
 
@@ -32,6 +33,23 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagB
     return VK_FALSE;
 }
 
+// VKFUSE_FILTER_ARITHMETIC, Auto where unset.
+FilterArithmetic arithmetic_from_environment() {
+    const char* env = std::getenv("VKFUSE_FILTER_ARITHMETIC");
+    if (!env || !*env) return FilterArithmetic::Auto;
+    const auto parsed = parse_filter_arithmetic(env);
+    if (!parsed)
+        throw Error(ErrorKind::InvalidArgument, "VKFUSE_FILTER_ARITHMETIC=" + std::string(env).substr(0, 40) +
+                                                    ": expected auto, float64 or compensated-float32");
+    return *parsed;
+}
+
+// VKFUSE_DEVICE_PROFILE's profile, null where unset.
+const vk::DeviceProfile* profile_from_environment() {
+    const char* env = std::getenv("VKFUSE_DEVICE_PROFILE");
+    return env && *env ? &vk::find_device_profile(env, "VKFUSE_DEVICE_PROFILE") : nullptr;
+}
+
 bool has_layer(const vk::Api& api, const char* name) {
     std::uint32_t n = 0;
     api.vkEnumerateInstanceLayerProperties(&n, nullptr);
@@ -43,7 +61,8 @@ bool has_layer(const vk::Api& api, const char* name) {
 }  // namespace
 
 Context::Impl::Impl(const ContextOptions& options)
-    : device_addresses_only(options.device_addresses_only), on_validation_message(options.on_validation_message) {
+    : device_addresses_only(options.device_addresses_only), on_validation_message(options.on_validation_message),
+      split_requested_(options.split_products) {
     api = vk::Api::load();
     // VKFUSE_VALIDATION=1 turns the layer on for any program, =sync with
     // synchronization validation (the CLI in tests).
@@ -53,6 +72,10 @@ Context::Impl::Impl(const ContextOptions& options)
     try {
         create_instance(validation, sync);
         choose_device(options.device_index);
+        apply_profile(options.device_profile);
+        if (device_addresses_only && !device_addresses)
+            throw Error(ErrorKind::Device, info.name + ": device_addresses_only asked for, but the device has no "
+                                                       "bufferDeviceAddress");
         choose_filter_arithmetic(options.filter_arithmetic);
         create_device();
         create_layout();
@@ -63,7 +86,7 @@ Context::Impl::Impl(const ContextOptions& options)
 }
 
 Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
-    : owns_device(false), device_addresses_only(options.device_addresses_only) {
+    : owns_device(false), device_addresses_only(options.device_addresses_only), split_requested_(options.split_products) {
     if (!caller.instance || !caller.physical_device || !caller.device)
         throw Error(ErrorKind::InvalidArgument, "caller device: instance, physical device and device must all be given");
     api = vk::Api::adopt(caller.get_instance_proc_addr);
@@ -84,7 +107,12 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
         info.external_memory_fd = info.external_memory_fd && caller.external_memory_fd;
         info.external_memory_host = info.external_memory_host && caller.external_memory_host;
         api->vkGetPhysicalDeviceProperties(physical, &properties);
+        VkPhysicalDeviceMemoryProperties memory{};
         api->vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+        memory_types.use_device(memory);
+        // The caller enabled what its device has; vkfuse uses device
+        // addresses only where the caller's device creation enabled them.
+        device_addresses = info.device_addresses && caller.buffer_device_address;
         choose_filter_arithmetic(options.filter_arithmetic);
         std::uint32_t n = 0;
         api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
@@ -99,7 +127,8 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
                                                         std::to_string(families[caller.queue_family].queueCount) +
                                                         " queues of family " + std::to_string(caller.queue_family));
         queue_family = caller.queue_family;
-        timestamps = families[queue_family].timestampValidBits > 0;
+        timestamp_bits = families[queue_family].timestampValidBits;
+        timestamps = timestamp_bits > 0;
         device = caller.device;
         api->load_device(device);
         api->vkGetDeviceQueue(device, queue_family, caller.queue_index, &queue);
@@ -182,8 +211,26 @@ void Context::Impl::choose_device(int index) {
     }
     physical = chosen->handle;
     info = chosen->info;
+    device_addresses = info.device_addresses;
     api->vkGetPhysicalDeviceProperties(physical, &properties);
+    VkPhysicalDeviceMemoryProperties memory{};
     api->vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+    memory_types.use_device(memory);
+}
+
+void Context::Impl::apply_profile(const std::string& wanted) {
+    profile = wanted.empty() ? profile_from_environment() : &vk::find_device_profile(wanted, "device profile");
+    if (!profile) return;
+    vk::apply_limits(*profile, properties.limits);
+    if (profile->discrete_memory) {
+        VkPhysicalDeviceMemoryProperties memory{};
+        api->vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+        memory_types.simulate_discrete(memory);
+    }
+    if (!profile->device_addresses) device_addresses = false;
+    info.device_addresses = device_addresses;
+    adapted("device profile " + std::string(profile->name) + " (simulated on " + info.name + "): " +
+            std::string(profile->summary));
 }
 
 // Auto takes doubles where they are native vector lanes: on a CPU device one
@@ -191,12 +238,27 @@ void Context::Impl::choose_device(int index) {
 // (docs/architecture.md has the measurement). A GPU's double rate is often a
 // small fraction of its float rate, so GPUs keep Dot2.
 void Context::Impl::choose_filter_arithmetic(FilterArithmetic wanted) {
+    if (wanted == FilterArithmetic::Auto) wanted = arithmetic_from_environment();
     if (wanted == FilterArithmetic::Float64 && !info.float64)
         throw Error(ErrorKind::Device, info.name + ": float64 filter arithmetic asked for, but the device has no "
                                                    "shaderFloat64");
     if (wanted == FilterArithmetic::Auto)
         wanted = info.float64 && info.type == "cpu" ? FilterArithmetic::Float64 : FilterArithmetic::CompensatedFloat32;
     filter_arithmetic = wanted;
+}
+
+bool Context::Impl::products_split() {
+    std::lock_guard lock(products_mutex_);
+    if (split_state_ >= 0) return split_state_ == 1;
+    bool split = false;
+    if (filter_arithmetic == FilterArithmetic::CompensatedFloat32) {
+        split = split_requested_ || !vk::fma_is_fused(*this);
+        if (split)
+            adapted(std::string(split_requested_ ? "asked to split products" : "fma is not fused") +
+                    ": compensated float32 filters take each product's error from Dekker's split");
+    }
+    split_state_ = split ? 1 : 0;
+    return split;
 }
 
 void Context::Impl::create_device() {
@@ -208,7 +270,8 @@ void Context::Impl::create_device() {
     for (std::uint32_t i = 0; i < n && !found; ++i)
         if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
             queue_family = i;
-            timestamps = families[i].timestampValidBits > 0;
+            timestamp_bits = families[i].timestampValidBits;
+            timestamps = timestamp_bits > 0;
             found = true;
         }
     if (!found) throw Error(ErrorKind::Device, info.name + ": no compute queue");
@@ -219,7 +282,7 @@ void Context::Impl::create_device() {
     qci.pQueuePriorities = &priority;
     VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    f12.bufferDeviceAddress = VK_TRUE;
+    f12.bufferDeviceAddress = device_addresses ? VK_TRUE : VK_FALSE;
     f12.timelineSemaphore = VK_TRUE;  // required of every Vulkan 1.2 device: vkfuse::submit signals one
     // The _fp16 kernels' float16 planes, enabled only where the device has them.
     f11.storageBuffer16BitAccess = info.fp16_storage;
@@ -245,11 +308,26 @@ void Context::Impl::create_device() {
 }
 
 void Context::Impl::create_layout() {
+    bound_buffers = std::min(kMaxKernelBuffers, properties.limits.maxPerStageDescriptorStorageBuffers);
+    if (bound_buffers < kMaxKernelBuffers) {
+        if (!device_addresses)
+            throw Error(ErrorKind::Device, info.name + ": " + std::to_string(bound_buffers) +
+                                               " storage buffers per stage and no bufferDeviceAddress: vkfuse's "
+                                               "kernels bind up to " + std::to_string(kMaxKernelBuffers));
+        adapted("kernels binding more than " + std::to_string(bound_buffers) +
+                " storage buffers (maxPerStageDescriptorStorageBuffers) reach them through device addresses");
+    }
+    if (!device_addresses)
+        adapted("no bufferDeviceAddress: every kernel binds its buffers, and plans beyond maxStorageBufferRange run "
+                "in blocks of sensors");
+    if (memory_types.simulated())
+        adapted("uploads take the " + memory_types.describe_heap(2) + " while it has room, then system memory; "
+                "read-back memory is cached, not coherent, and invalidated before each read");
     VkDescriptorSetLayoutBinding bindings[kMaxKernelBuffers]{};
-    for (std::uint32_t b = 0; b < kMaxKernelBuffers; ++b)
+    for (std::uint32_t b = 0; b < bound_buffers; ++b)
         bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
     VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    lci.bindingCount = kMaxKernelBuffers;
+    lci.bindingCount = bound_buffers;
     lci.pBindings = bindings;
     vk::check(api->vkCreateDescriptorSetLayout(device, &lci, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
     VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushConstantBytes};
@@ -262,6 +340,7 @@ void Context::Impl::create_layout() {
 }
 
 VkPipeline Context::Impl::pipeline(const std::string& shader, std::span<const std::uint32_t> specialization) {
+    if (kernel_interface(shader).splits_products) products_split();  // decided before it is built in
     std::lock_guard lock(pipelines_mutex_);
     auto key = std::make_pair(shader, std::vector<std::uint32_t>(specialization.begin(), specialization.end()));
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
@@ -280,6 +359,11 @@ const vk::KernelInterface& Context::Impl::kernel_interface(const std::string& sh
 VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
                                           std::span<const std::uint32_t> specialization) {
     auto spirv = vk::shader_spirv(shader);
+    const std::uint32_t invocations = vk::reflect_kernel(spirv).invocations;
+    if (invocations > properties.limits.maxComputeWorkGroupInvocations)
+        throw Error(ErrorKind::Device, info.name + ": kernel " + shader + " runs " + std::to_string(invocations) +
+                                           " invocations per workgroup; the device allows " +
+                                           std::to_string(properties.limits.maxComputeWorkGroupInvocations));
     VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     mci.codeSize = spirv.size_bytes();
     mci.pCode = spirv.data();
@@ -290,12 +374,17 @@ VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineL
     pci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pci.stage.module = module;
     pci.stage.pName = "main";
+    // The kernel's own constants (constant_id 0, 1, ...), then the context's.
+    std::vector<std::uint32_t> words(specialization.begin(), specialization.end());
     std::vector<VkSpecializationMapEntry> entries;
-    for (std::uint32_t i = 0; i < specialization.size(); ++i)
+    for (std::uint32_t i = 0; i < words.size(); ++i)
         entries.push_back({i, i * std::uint32_t(sizeof(std::uint32_t)), sizeof(std::uint32_t)});
-    VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
-                              specialization.data()};
-    if (!entries.empty()) pci.stage.pSpecializationInfo = &spec;
+    entries.push_back({vk::kSplitProductsConstant, std::uint32_t(words.size() * sizeof(std::uint32_t)), sizeof(VkBool32)});
+    // Decided by now for every kernel that declares it (pipeline()).
+    words.push_back(split_state_ == 1 ? VK_TRUE : VK_FALSE);
+    VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), words.size() * sizeof(std::uint32_t),
+                              words.data()};
+    pci.stage.pSpecializationInfo = &spec;
     pci.layout = with_layout;
     VkPipeline pipe = VK_NULL_HANDLE;
     VkResult r = api->vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pci, nullptr, &pipe);
@@ -306,6 +395,7 @@ VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineL
 
 std::uint32_t Context::Impl::memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
                                          VkMemoryPropertyFlags preferred) const {
+    const auto& memory = memory_types.properties();
     int fallback = -1;
     for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
         if (!(type_bits & (1u << i))) continue;
@@ -316,6 +406,22 @@ std::uint32_t Context::Impl::memory_type(std::uint32_t type_bits, VkMemoryProper
     }
     if (fallback < 0) throw Error(ErrorKind::Device, info.name + ": no suitable memory type");
     return std::uint32_t(fallback);
+}
+
+void Context::Impl::adapted(const std::string& what) {
+    std::lock_guard lock(adaptations_mutex_);
+    if (std::find(adaptations_.begin(), adaptations_.end(), what) == adaptations_.end()) adaptations_.push_back(what);
+}
+
+std::vector<std::string> Context::Impl::adaptations() const {
+    std::lock_guard lock(adaptations_mutex_);
+    return adaptations_;
+}
+
+void Context::Impl::note_fallback(std::uint32_t wanted, std::uint32_t taken) {
+    const std::uint32_t from = memory_types.heap_of(wanted), to = memory_types.heap_of(taken);
+    if (from != to) adapted("memory: the " + memory_types.describe_heap(from) + " was full; buffers went to the " +
+                            memory_types.describe_heap(to));
 }
 
 Context::Impl::~Impl() { release(); }
@@ -354,6 +460,28 @@ std::string_view to_string(FilterArithmetic a) {
     return "?";
 }
 
+void check_vulkan_environment() {
+    arithmetic_from_environment();
+    profile_from_environment();
+}
+
+bool validation_layer_installed() {
+    try {
+        return has_layer(*vk::Api::load(), kValidationLayer);
+    } catch (const Error&) {
+        return false;  // no loader
+    }
+}
+
+std::optional<FilterArithmetic> parse_filter_arithmetic(std::string_view text) {
+    for (FilterArithmetic a : {FilterArithmetic::Auto, FilterArithmetic::Float64, FilterArithmetic::CompensatedFloat32}) {
+        std::string name(to_string(a)), dashed = name;
+        std::replace(dashed.begin(), dashed.end(), ' ', '-');
+        if (text == name || text == dashed) return a;
+    }
+    return std::nullopt;
+}
+
 std::string_view to_string(Backend b) {
     switch (b) {
         case Backend::Cpu: return "cpu";
@@ -385,6 +513,15 @@ std::optional<Context> open_backend(Backend choice, std::string_view subject, st
 
 const DeviceInfo& Context::device() const { return impl_->info; }
 FilterArithmetic Context::filter_arithmetic() const { return impl_->filter_arithmetic; }
+bool Context::splits_products() const { return impl_->products_split(); }
+std::string Context::device_profile() const { return impl_->profile ? std::string(impl_->profile->name) : ""; }
+std::vector<std::string> Context::adaptations() const { return impl_->adaptations(); }
+
+std::vector<std::string> device_profile_names() {
+    std::vector<std::string> names;
+    for (const vk::DeviceProfile& p : vk::device_profiles()) names.emplace_back(p.name);
+    return names;
+}
 std::uint64_t Context::validation_message_count() const { return impl_->validation_messages.load(); }
 
 }  // namespace vkfuse

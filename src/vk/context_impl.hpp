@@ -5,12 +5,16 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "vk/api.hpp"
+#include "vk/device_profile.hpp"
 #include "vk/kernel_interface.hpp"
+#include "vk/memory_types.hpp"
 #include "vkfuse/vk/context.hpp"
 #include "vkfuse/vk/interop.hpp"
 
@@ -24,10 +28,19 @@ struct Context::Impl {
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     std::uint32_t queue_family = 0;
+    // The device's properties as the library sees them: its own, or lowered
+    // by a simulated profile (vk/device_profile.hpp).
     VkPhysicalDeviceProperties properties{};
-    VkPhysicalDeviceMemoryProperties memory{};
+    vk::MemoryTypes memory_types;  // every allocation goes through it
+    const vk::DeviceProfile* profile = nullptr;  // the simulated profile, if any
     DeviceInfo info;
+    bool device_addresses = true;  // bufferDeviceAddress enabled (else every kernel is bound)
+    // Storage buffers a bound kernel may have (the set layout's bindings):
+    // kMaxKernelBuffers, or fewer where maxPerStageDescriptorStorageBuffers is
+    // lower; a kernel with more reaches them through device addresses.
+    std::uint32_t bound_buffers = 0;
     bool timestamps = false;  // queue supports timestamp queries
+    std::uint32_t timestamp_bits = 0;  // the queue's timestampValidBits: the counter wraps at 2^bits
     // false on a caller's device (vk/interop.hpp): the instance, device and
     // queue are the caller's, and only vkfuse's own objects are destroyed.
     bool owns_device = true;
@@ -64,13 +77,42 @@ struct Context::Impl {
     std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
                               VkMemoryPropertyFlags preferred) const;
 
+    // Compensated float32 without fma (compensated.glsl's SPLIT_PRODUCTS,
+    // given to every pipeline as kSplitProductsConstant): decided on the first
+    // call, before the first compensated kernel is built, by asking the device
+    // whether its fma is fused (vk/fma_probe.hpp); false under float64.
+    bool products_split();
+
+    // What the library changed to fit this device (Context::adaptations()).
+    void adapted(const std::string& what);
+    std::vector<std::string> adaptations() const;
+    // A buffer that wanted memory type `wanted` took `taken` (its heap was full).
+    void note_fallback(std::uint32_t wanted, std::uint32_t taken);
+    // Without device addresses: a fresh range of `bytes` in an address space
+    // of the library's own, so that buffers keep distinct addresses for the
+    // plan's graph to name them by (vk/buffer.cpp). Never given to a kernel.
+    VkDeviceAddress handle_address(VkDeviceSize bytes) {
+        return next_handle_address_.fetch_add((bytes + 511) / 256 * 256);
+    }
+
 private:
+    std::mutex products_mutex_;
+    bool split_requested_ = false;  // ContextOptions::split_products
+    // products_split() once decided (1 split, 0 not), -1 before: atomic, as
+    // create_pipeline reads it under the pipelines' lock, not the products'.
+    std::atomic<int> split_state_{-1};
+    std::atomic<VkDeviceAddress> next_handle_address_{VkDeviceAddress(1) << 40};
+    mutable std::mutex adaptations_mutex_;
+    std::vector<std::string> adaptations_;  // in the order they happened, each once
     std::mutex pipelines_mutex_;
     std::map<std::pair<std::string, std::vector<std::uint32_t>>, VkPipeline> pipelines_;
     std::map<std::string, vk::KernelInterface> interfaces_;
 
     void create_instance(bool validation, bool synchronization_validation);
     void choose_device(int index);
+    // The profile ContextOptions or VKFUSE_DEVICE_PROFILE names, applied to
+    // the chosen device's limits, memory and features.
+    void apply_profile(const std::string& name);
     void choose_filter_arithmetic(FilterArithmetic wanted);
     void create_device();
     void create_layout();

@@ -11,10 +11,10 @@ DescriptorSets::~DescriptorSets() {
 }
 
 VkDescriptorSet DescriptorSets::bind(std::span<const DeviceSpan> buffers) {
-    if (buffers.size() > kMaxKernelBuffers) throw Error(ErrorKind::Device, "internal: too many kernel buffers");
+    if (buffers.size() > ctx_.bound_buffers) throw Error(ErrorKind::Device, "internal: too many kernel buffers");
     auto& api = *ctx_.api;
     if (left_in_pool_ == 0) {
-        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSetsPerPool * kMaxKernelBuffers};
+        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSetsPerPool * ctx_.bound_buffers};
         VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pci.maxSets = kSetsPerPool;
         pci.poolSizeCount = 1;

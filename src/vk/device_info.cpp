@@ -55,10 +55,7 @@ PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
     f.pNext = &f12;
     f12.pNext = &f11;
     api.vkGetPhysicalDeviceFeatures2(dev, &f);
-    if (!f12.bufferDeviceAddress) {
-        e.info.why_not = "no bufferDeviceAddress feature";
-        return e;
-    }
+    e.info.device_addresses = f12.bufferDeviceAddress;
     e.info.fp16_storage = f11.storageBuffer16BitAccess && f12.shaderFloat16;
     e.info.float64 = f.features.shaderFloat64;
     std::uint32_t n = 0;

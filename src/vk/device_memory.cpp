@@ -23,10 +23,6 @@ struct DeviceMemory::Impl {
 
 namespace {
 
-// Every use a plan makes of a buffer (vk/buffer.cpp's MemoryUse buffers).
-constexpr VkBufferUsageFlags kUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-
 void need(bool has, const Context::Impl& ctx, const char* extension, const char* what) {
     if (!has)
         throw Error(ErrorKind::Device, ctx.info.name + ": " + what + " needs " + extension +
@@ -49,7 +45,7 @@ vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryH
     // driver that shares it only as a dedicated allocation is refused rather
     // than given memory it cannot take.
     VkPhysicalDeviceExternalBufferInfo query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_BUFFER_INFO};
-    query.usage = kUsage;
+    query.usage = vk::Buffer::usage(ctx);
     query.handleType = handle_type;
     VkExternalBufferProperties external_props{VK_STRUCTURE_TYPE_EXTERNAL_BUFFER_PROPERTIES};
     api.vkGetPhysicalDeviceExternalBufferProperties(ctx.physical, &query, &external_props);
@@ -66,11 +62,12 @@ vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryH
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     bci.pNext = &external;
     bci.size = bytes;
-    bci.usage = kUsage;
+    bci.usage = vk::Buffer::usage(ctx);
     bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     VkBuffer buffer = VK_NULL_HANDLE;
     vk::check(api.vkCreateBuffer(ctx.device, &bci, nullptr, &buffer), (what + ": vkCreateBuffer").c_str());
     VkDeviceMemory memory = VK_NULL_HANDLE;
+    std::uint32_t mai_type = 0;
     try {
         VkMemoryRequirements req{};
         api.vkGetBufferMemoryRequirements(ctx.device, buffer, &req);
@@ -85,30 +82,35 @@ vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryH
         flags.pNext = import;
         flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
         VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-        mai.pNext = &flags;
+        mai.pNext = ctx.device_addresses ? static_cast<const void*>(&flags) : import;
         mai.allocationSize = allocation;
         // Device-local wherever the allowed types have it (a GPU's first type
         // may be system memory); host-visible too where the device has both
         // (lavapipe, integrated GPUs): the host then sees the memory as well.
         const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-        const std::uint32_t types = req.memoryTypeBits & allowed_types;
+        const auto& memory_props = ctx.memory_types.properties();
+        const std::uint32_t types = ctx.memory_types.visible_bits(req.memoryTypeBits & allowed_types);
         bool device_local = false;
-        for (std::uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
-            if ((types >> i & 1u) && (ctx.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+        for (std::uint32_t i = 0; i < memory_props.memoryTypeCount; ++i)
+            if ((types >> i & 1u) && (memory_props.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
                 device_local = true;
         mai.memoryTypeIndex = ctx.memory_type(types, device_local ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : 0,
                                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | host);
-        vk::check(api.vkAllocateMemory(ctx.device, &mai, nullptr, &memory), (what + ": vkAllocateMemory").c_str());
+        mai_type = mai.memoryTypeIndex;
+        vk::check(ctx.memory_types.allocate(api, ctx.device, mai, &memory), (what + ": vkAllocateMemory").c_str());
         if (allocated_memory) *allocated_memory = true;
         vk::check(api.vkBindBufferMemory(ctx.device, buffer, memory, 0), (what + ": vkBindBufferMemory").c_str());
         void* mapped = host_pointer;  // imported host memory is seen where it lies
-        const bool visible = (ctx.memory.memoryTypes[mai.memoryTypeIndex].propertyFlags & host) == host;
+        const bool visible = (memory_props.memoryTypes[mai.memoryTypeIndex].propertyFlags & host) == host;
         if (visible && !host_pointer)
             vk::check(api.vkMapMemory(ctx.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped), (what + ": vkMapMemory").c_str());
+        if (mapped == reinterpret_cast<void*>(~std::uintptr_t(0)))  // lavapipe's unbacked memory (vk/buffer.cpp)
+            throw OutOfMemory(what + ": " + std::to_string(allocation) +
+                              " bytes reported allocated that the driver could not back (out of memory)");
         *allocated = allocation;
-        return vk::Buffer::adopt(ctx, buffer, memory, bytes, mapped);
+        return vk::Buffer::adopt(ctx, buffer, memory, mai.memoryTypeIndex, allocation, bytes, mapped);
     } catch (...) {
-        if (memory) api.vkFreeMemory(ctx.device, memory, nullptr);
+        if (memory) ctx.memory_types.free(api, ctx.device, memory, mai_type, allocation);
         api.vkDestroyBuffer(ctx.device, buffer, nullptr);
         throw;
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vk/buffer.hpp"
@@ -37,7 +38,8 @@ public:
             create_set();
             for (const char* name : {"probe_copy_address", "probe_copy_address_vec4", "probe_copy_bound", "probe_copy_bound_vec4", "probe_shared",
                                      "probe_fma"})
-                pipelines_[name] = ctx_.create_pipeline(name, layout_);
+                if (ctx_.device_addresses || std::string_view(name).find("address") == std::string_view::npos)
+                    pipelines_[name] = ctx_.create_pipeline(name, layout_);
         } catch (...) {
             release();
             throw;
@@ -221,6 +223,7 @@ private:
                     VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         });
         job_.run();
+        readback_.invalidate();
         const auto* out = static_cast<const float*>(readback_.mapped());
         for (std::uint64_t i = 0; i < floats_; ++i) {
             const float want = expect(i);
@@ -247,8 +250,11 @@ KernelAccess measure_kernel_access(Context& context, std::uint64_t bytes, int re
     KernelAccess r;
     r.floats = floats;
     const double n = floats;
-    r.address_ns = probe.time_checked("probe_copy_address", floats, doubled) / n * 1e9;
-    r.address_vec4_ns = probe.time_checked("probe_copy_address_vec4", floats / 4, doubled) / n * 1e9;
+    r.device_addresses = ContextAccess::of(context).device_addresses;
+    if (r.device_addresses) {
+        r.address_ns = probe.time_checked("probe_copy_address", floats, doubled) / n * 1e9;
+        r.address_vec4_ns = probe.time_checked("probe_copy_address_vec4", floats / 4, doubled) / n * 1e9;
+    }
     r.bound_ns = probe.time_checked("probe_copy_bound", floats, doubled) / n * 1e9;
     r.bound_vec4_ns = probe.time_checked("probe_copy_bound_vec4", floats / 4, doubled) / n * 1e9;
     r.shared_exchange_ns = probe.time_checked("probe_shared", floats, shared_rotated) / (n * kSharedRounds) * 1e9;

@@ -14,6 +14,7 @@ namespace vkfuse::vk {
 
 struct KernelAccess {
     std::uint64_t floats = 0;       // floats each copy kernel copies
+    bool device_addresses = true;   // the context has them; else the address figures are 0
     double address_ns = 0;          // per float copied (one load + one store), device addresses
     double address_vec4_ns = 0;     // the same, four floats per load and store
     double bound_ns = 0;            // the same through descriptor-bound storage buffers

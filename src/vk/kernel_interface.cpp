@@ -13,9 +13,10 @@ namespace {
 
 // The few SPIR-V opcodes, decorations and storage classes read here.
 constexpr std::uint32_t kMagic = 0x07230203;
+constexpr std::uint32_t OpExecutionMode = 16, ExecutionModeLocalSize = 17;
 constexpr std::uint32_t OpTypeInt = 21, OpTypeFloat = 22, OpTypeVector = 23, OpTypeStruct = 30, OpTypePointer = 32,
                         OpVariable = 59, OpDecorate = 71, OpMemberDecorate = 72;
-constexpr std::uint32_t DecorationBinding = 33, DecorationOffset = 35;
+constexpr std::uint32_t DecorationSpecId = 1, DecorationBinding = 33, DecorationOffset = 35;
 constexpr std::uint32_t StoragePushConstant = 9, StoragePhysicalBuffer = 5349;
 
 [[noreturn]] void bad(const std::string& why) { throw Error(ErrorKind::Device, "internal: kernel SPIR-V: " + why); }
@@ -29,12 +30,16 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
     std::map<std::uint32_t, std::map<std::uint32_t, std::uint32_t>> offsets;  // struct -> member -> offset
     std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> pointers;  // id -> (storage class, pointee)
     std::map<std::uint32_t, std::uint32_t> bindings;           // variable id -> binding
-    std::uint32_t push_pointer = 0;
+    std::uint32_t push_pointer = 0, invocations = 0;
+    bool splits_products = false;
     for (std::size_t at = 5; at < spirv.size();) {
         const std::uint32_t count = spirv[at] >> 16, op = spirv[at] & 0xffff;
         if (count == 0 || at + count > spirv.size()) bad("truncated instruction");
         const std::uint32_t* w = &spirv[at];
         switch (op) {
+            case OpExecutionMode:
+                if (count >= 6 && w[2] == ExecutionModeLocalSize) invocations = w[3] * w[4] * w[5];
+                break;
             case OpTypeInt:
             case OpTypeFloat: type_bytes[w[1]] = w[2] / 8; break;
             case OpTypeVector:
@@ -50,6 +55,7 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
                 break;
             case OpDecorate:
                 if (count >= 4 && w[2] == DecorationBinding) bindings[w[1]] = w[3];
+                if (count >= 4 && w[2] == DecorationSpecId && w[3] == kSplitProductsConstant) splits_products = true;
                 break;
             case OpMemberDecorate:
                 if (count >= 5 && w[3] == DecorationOffset) offsets[w[1]][w[2]] = w[4];
@@ -59,6 +65,8 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
         at += count;
     }
     KernelInterface k;
+    k.invocations = invocations;
+    k.splits_products = splits_products;
     std::set<std::uint32_t> used;
     for (const auto& [variable, binding] : bindings) used.insert(binding);
     k.bindings = std::uint32_t(used.size());

@@ -9,9 +9,15 @@
 
 namespace vkfuse::vk {
 
+// constant_id of compensated.glsl's SPLIT_PRODUCTS, which the context sets
+// for every pipeline.
+inline constexpr std::uint32_t kSplitProductsConstant = 100;
+
 struct KernelInterface {
     std::uint32_t bindings = 0;    // storage buffers of set 0 (bindings 0 .. n-1)
     std::uint32_t push_bytes = 0;  // end of the push-constant block's last member
+    std::uint32_t invocations = 0;  // per workgroup: its local size x * y * z
+    bool splits_products = false;   // declares SPLIT_PRODUCTS: a compensated float32 kernel
 };
 
 // Reads the interface from SPIR-V words. Throws Error(Device) on words that

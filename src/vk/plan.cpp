@@ -447,6 +447,7 @@ void Plan::Impl::prepare_device_frames() {
 }
 
 void Plan::Impl::complete() {
+    readback.invalidate();  // what the cycle wrote, visible where read-back memory is not coherent
     has_run = true;
     std::fill(fused_fresh.begin(), fused_fresh.end(), false);
 }

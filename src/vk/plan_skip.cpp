@@ -20,11 +20,13 @@ SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& up
     const std::size_t samples = S * K * std::size_t(cfg.channels) * std::size_t(cfg.height) * std::size_t(cfg.width);
     means_ = Buffer(ctx, (samples * 2 + 3) / 4 * 4, MemoryUse::Upload);
     inv_noise_ = Buffer(ctx, S * K * tiles * 4, MemoryUse::Upload);
-    scores_ = Buffer(ctx, S * tiles * 4, MemoryUse::Readback);
+    // The kernel's atomicMax works on device memory; the scores come back by copy.
+    scores_ = Buffer(ctx, S * tiles * 4, MemoryUse::Device);
     if (statics()) {
         previous_ = Buffer(ctx, (samples + 3) / 4 * 4, MemoryUse::Upload);
-        statics_ = Buffer(ctx, S * tiles * 4, MemoryUse::Readback);
+        statics_ = Buffer(ctx, S * tiles * 4, MemoryUse::Device);
     }
+    scores_readback_ = Buffer(ctx, S * tiles * 4 * (statics() ? 2 : 1), MemoryUse::Readback);
     indirect_ = Buffer(ctx, kMaxDispatches * sizeof(VkDispatchIndirectCommand), MemoryUse::Upload);
     if (sparse_capable(cfg)) sparse_.emplace(ctx, cfg);
     reference_set_.assign(S, false);
@@ -43,6 +45,14 @@ void SkipState::record(const Buffer& upload, bool addressed) {
     sets_.emplace(ctx_);
     detect_.emplace(ctx_, 0);
     Recorder rec(ctx_, detect_->cmd(), VK_NULL_HANDLE, "", *sets_, addressed);
+    const Api& api = *ctx_.api;
+    const VkCommandBuffer cmd = detect_->cmd();
+    const VkDeviceSize score_bytes = scores_.size();
+    // The kernel's atomicMax starts from 0.
+    api.vkCmdFillBuffer(cmd, scores_.handle(), 0, VK_WHOLE_SIZE, 0);
+    if (statics()) api.vkCmdFillBuffer(cmd, statics_.handle(), 0, VK_WHOLE_SIZE, 0);
+    memory_barrier(api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     // Without Static the kernel never reads `previous` nor writes `statics`:
     // the frames and the scores stand in for their bindings.
     const DeviceSpan previous = statics() ? previous_.span() : upload.span();
@@ -57,6 +67,13 @@ void SkipState::record(const Buffer& upload, bool addressed) {
                      .u32(cfg_.width % 4 == 0)
                      .u32(statics()),
                  tiles_x_, tiles_y_, std::uint32_t(cfg_.sensors));
+    memory_barrier(api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    const VkBufferCopy to_scores{0, 0, score_bytes}, to_statics{0, score_bytes, score_bytes};
+    api.vkCmdCopyBuffer(cmd, scores_.handle(), scores_readback_.handle(), 1, &to_scores);
+    if (statics()) api.vkCmdCopyBuffer(cmd, statics_.handle(), scores_readback_.handle(), 1, &to_statics);
+    memory_barrier(api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                   VK_ACCESS_HOST_READ_BIT);
     rec.finish();
 }
 
@@ -116,12 +133,10 @@ const Image& SkipState::skipped_image(int sensor) const {
 
 std::vector<int> SkipState::detect() {
     const std::size_t tiles = tiles_x_ * tiles_y_;
-    // The kernel's atomicMax starts from 0.
-    std::memset(scores_.mapped(), 0, std::size_t(cfg_.sensors) * tiles * sizeof(float));
-    if (statics()) std::memset(statics_.mapped(), 0, std::size_t(cfg_.sensors) * tiles * sizeof(float));
     detect_->submit_and_wait();
-    const float* still = statics() ? static_cast<const float*>(statics_.mapped()) : nullptr;
-    const float* scores = static_cast<const float*>(scores_.mapped());
+    scores_readback_.invalidate();
+    const float* scores = static_cast<const float*>(scores_readback_.mapped());
+    const float* still = statics() ? scores + std::size_t(cfg_.sensors) * tiles : nullptr;
     std::vector<int> fused;
     if (sparse_) sparse_->begin_run();
     for (int s = 0; s < cfg_.sensors; ++s) {

@@ -75,9 +75,10 @@ private:
     std::uint32_t tiles_x_, tiles_y_;
     Buffer means_;      // S*K*C planes, float32
     Buffer inv_noise_;  // S*K*tiles: 1 / tile noise
-    Buffer scores_;     // S*tiles, read back
+    Buffer scores_;     // S*tiles, device memory (the kernel's atomicMax)
     Buffer previous_;   // Static: S*K frames of each sensor's last fused cycle, 8-bit
-    Buffer statics_;    // Static: S*tiles scores against them, read back
+    Buffer statics_;    // Static: S*tiles scores against them, device memory
+    Buffer scores_readback_;  // scores_ then statics_, copied out after the kernel
     Buffer indirect_;   // VkDispatchIndirectCommand per fusion dispatch
     std::optional<SparseRegions> sparse_;
     std::optional<DescriptorSets> sets_;

@@ -16,8 +16,11 @@ PushConstants& PushConstants::put(const void* v, std::size_t n) {
 
 Recorder::Recorder(Context::Impl& ctx, VkCommandBuffer cmd, VkQueryPool queries, const std::string& precision,
                    DescriptorSets& sets, bool addressed, bool secondary, std::uint32_t timestamps)
-    : ctx_(ctx), cmd_(cmd), queries_(queries), variant_(precision + (addressed ? "_addr" : "")), sets_(sets),
-      addressed_(addressed), timestamps_(timestamps) {
+    : ctx_(ctx), cmd_(cmd), queries_(queries), precision_(precision), sets_(sets), addressed_(addressed),
+      timestamps_(timestamps) {
+    if (addressed && !ctx.device_addresses)
+        throw Error(ErrorKind::Device, ctx.info.name + ": a plan beyond maxStorageBufferRange per sensor needs device "
+                                                       "addresses (bufferDeviceAddress), which the device lacks");
     VkCommandBufferInheritanceInfo inheritance{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     if (secondary) {
@@ -60,10 +63,11 @@ void check_interface(Context::Impl& ctx, const std::string& kernel, std::size_t 
 
 }  // namespace
 
-std::string Recorder::kernel_name(const std::string& shader) const {
-    if (ctx_.filter_arithmetic == FilterArithmetic::Float64 && has_shader(shader + "_f64" + variant_))
-        return shader + "_f64" + variant_;
-    return shader + variant_;
+std::string Recorder::kernel_name(const std::string& shader, bool addressed) const {
+    const std::string variant = precision_ + (addressed ? "_addr" : "");
+    if (ctx_.filter_arithmetic == FilterArithmetic::Float64 && has_shader(shader + "_f64" + variant))
+        return shader + "_f64" + variant;
+    return shader + variant;
 }
 
 void Recorder::begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization) {
@@ -78,18 +82,21 @@ void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceS
                         const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
                         std::span<const std::uint32_t> specialization) {
     if (gx == 0 || gy == 0 || gz == 0) return;
-    const std::string kernel = kernel_name(shader);
+    // A kernel with more buffers than a stage may bind on this device reaches
+    // them by address (the context allows that only with device addresses).
+    const bool addressed = addressed_ || buffers.size() > ctx_.bound_buffers;
+    const std::string kernel = kernel_name(shader, addressed);
     begin_dispatch(kernel, specialization);
     auto& api = *ctx_.api;
     PushConstants push;
-    if (addressed_) {
+    if (addressed) {
         for (const DeviceSpan& b : buffers) push.ptr(b.address());
     } else {
         const VkDescriptorSet set = sets_.bind(std::span(buffers.begin(), buffers.size()));
         api.vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.layout, 0, 1, &set, 0, nullptr);
     }
     push.append(scalars);
-    check_interface(ctx_, kernel, addressed_ ? 0 : buffers.size(), push.size());
+    check_interface(ctx_, kernel, addressed ? 0 : buffers.size(), push.size());
     if (push.size() > 0)
         api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
     if (!indirect_) {

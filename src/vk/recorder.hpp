@@ -19,7 +19,8 @@ public:
     // queries may be VK_NULL_HANDLE (no profiling). precision is appended to
     // every shader name dispatched ("" or "_fp16": the plan's precision).
     // Kernels get their buffers bound through sets made in `sets`, or, when
-    // `addressed`, as device addresses (the kernels' "_addr" variants). A
+    // `addressed`, as device addresses (the kernels' "_addr" variants; also
+    // any kernel with more buffers than the context's bound_buffers). A
     // kernel built in both filter arithmetics (shaders/compensated.glsl) runs
     // in the one the context chose: "_f64" before the rest where it is float64.
     // A secondary cmd is begun for simultaneous use outside any render pass
@@ -58,7 +59,7 @@ private:
     Context::Impl& ctx_;
     VkCommandBuffer cmd_;
     VkQueryPool queries_;
-    std::string variant_;
+    std::string precision_;  // "" or "_fp16"
     DescriptorSets& sets_;
     bool addressed_;
     std::uint32_t timestamps_;
@@ -71,7 +72,7 @@ private:
     void barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
                  VkAccessFlags dst_access);
     // The embedded variant of shader this recorder dispatches.
-    std::string kernel_name(const std::string& shader) const;
+    std::string kernel_name(const std::string& shader, bool addressed) const;
     void begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization);
 };
 

@@ -19,10 +19,13 @@ struct DeviceInfo {
     std::string driver;       // driver name and info
     std::string type;         // "cpu", "integrated", "discrete", "virtual", "other"
     std::string api_version;  // "1.3.230"
-    bool usable = false;      // meets vkfuse's needs (Vulkan 1.2, buffer device address)
+    bool usable = false;      // meets vkfuse's needs (Vulkan 1.2, a compute queue)
     std::string why_not;      // when !usable, the missing capability
     bool fp16_storage = false;  // 16-bit storage buffers and float16 in shaders: Precision::Fp16Storage
     bool float64 = false;       // double arithmetic in shaders: FilterArithmetic::Float64
+    // bufferDeviceAddress: kernels may reach buffers by address (plans whose
+    // one sensor exceeds a binding's range need it; without it every kernel binds).
+    bool device_addresses = false;
     // Memory shared with other devices and the host (vk/interop.hpp, DeviceMemory).
     bool external_memory_fd = false;    // VK_KHR_external_memory_fd
     bool external_memory_host = false;  // VK_EXT_external_memory_host
@@ -38,6 +41,9 @@ enum class FilterArithmetic {
     CompensatedFloat32,  // Dot2: a float sum and its error term (any device)
 };
 std::string_view to_string(FilterArithmetic);  // "auto", "float64", "compensated float32"
+// The to_string name, with '-' accepted for its space ("compensated-float32",
+// how VKFUSE_FILTER_ARITHMETIC spells it); nullopt for any other text.
+std::optional<FilterArithmetic> parse_filter_arithmetic(std::string_view text);
 
 struct ContextOptions {
     int device_index = -1;    // -1: the best usable device (discrete > integrated > cpu)
@@ -56,8 +62,33 @@ struct ContextOptions {
     // device addresses only where not even one sensor fits. true: every plan
     // uses device addresses (to test or compare that path on any plan).
     bool device_addresses_only = false;
+    // Auto: VKFUSE_FILTER_ARITHMETIC in the environment when set (auto,
+    // float64, compensated-float32: how tests run every kernel in a GPU's
+    // arithmetic on lavapipe), else Float64 on CPU devices that have it.
     FilterArithmetic filter_arithmetic = FilterArithmetic::Auto;
+    // Compensated float32 takes each product's rounding error from fma, which
+    // Vulkan does not promise to be fused: the context asks the device once
+    // and, where it is not, takes the error from Dekker's split (about 17
+    // float operations instead of 2). true: the split on any device (to test
+    // or compare that path).
+    bool split_products = false;
+    // A simulated device profile (device_profile_names()): the device's limits,
+    // memory and features seen as those of a GPU class it is not, so that
+    // what vkfuse does on that class runs here (lavapipe in tests). A profile
+    // only lowers what the device offers. "": VKFUSE_DEVICE_PROFILE in the
+    // environment when set, else none. Throws Error(InvalidArgument) for an
+    // unknown name.
+    std::string device_profile;
 };
+
+// The simulated device profiles, in the order `vkfuse info` lists them:
+// discrete-no-rebar, phone, no-device-address.
+std::vector<std::string> device_profile_names();
+
+// Throws the Error(InvalidArgument) a Context would for the environment's
+// VKFUSE_DEVICE_PROFILE or VKFUSE_FILTER_ARITHMETIC, without opening a
+// device: a program checks them before its first output.
+void check_vulkan_environment();
 
 // Owns a VkInstance, one VkDevice and its compute queue. Cheap to move, not
 // copyable; several Contexts may live in one process, and one Context may be
@@ -75,6 +106,17 @@ public:
     const DeviceInfo& device() const;
     // The filter arithmetic in use: Float64 or CompensatedFloat32, never Auto.
     FilterArithmetic filter_arithmetic() const;
+    // Compensated float32 with products' errors from Dekker's split (the
+    // device's fma is not fused, or ContextOptions::split_products); false
+    // under Float64.
+    bool splits_products() const;
+    // The simulated device profile in use, "" for none.
+    std::string device_profile() const;
+    // What vkfuse changed to fit this device, one sentence each, in the order
+    // it happened: the profile, kernels moved to device addresses, a full
+    // memory heap's buffers placed in another, products split. Empty where
+    // nothing needed changing.
+    std::vector<std::string> adaptations() const;
     // Number of validation messages seen so far (0 unless validation is on).
     std::uint64_t validation_message_count() const;
 
@@ -100,6 +142,11 @@ std::optional<Backend> parse_backend(std::string_view text);  // nullopt for any
 // option ("--backend", "backend").
 std::optional<Context> open_backend(Backend choice, std::string_view subject,
                                     std::string* fallback_reason = nullptr);
+
+// Whether the Vulkan validation layer (VK_LAYER_KHRONOS_validation, Debian's
+// vulkan-validationlayers) is installed: what ContextOptions::validation
+// needs. false also where no Vulkan loader exists.
+bool validation_layer_installed();
 
 // Lists the Vulkan devices without opening one. Throws Error(Device) if the
 // loader is missing; returns an empty list if it finds no device.

@@ -44,6 +44,10 @@ struct CallerDevice {
     bool fp16_storage = false;         // storageBuffer16BitAccess + shaderFloat16: Precision::Fp16Storage
     bool external_memory_fd = false;   // VK_KHR_external_memory_fd: DeviceMemory's fd import and export
     bool external_memory_host = false; // VK_EXT_external_memory_host: DeviceMemory::import_host
+    // bufferDeviceAddress enabled (kernels beyond a binding's range, or with
+    // more buffers than a stage may bind, reach them by address). false:
+    // vkfuse binds every buffer and refuses plans that would need addresses.
+    bool buffer_device_address = true;
 };
 
 // A Context on the caller's device. vkfuse creates only its own objects
@@ -54,14 +58,19 @@ struct CallerDevice {
 // vkfuse::submit, so the caller must not submit to the same queue from another
 // thread at the same time (or record plans into its own command buffers and
 // submit those itself). options.device_index and options.validation do not
-// apply (the caller's instance has its own layers). Throws Error(Device) for a
-// device that does not meet the requirements.
+// apply (the caller's instance has its own layers), nor does a device profile.
+// Queue families: vkfuse submits only to the caller's queue, in family
+// `queue_family`, and transfers no ownership; a buffer of the caller's
+// (BufferRange) that another queue family also uses must be created
+// VK_SHARING_MODE_CONCURRENT, or released to and acquired from that family
+// by the caller around vkfuse's work. Throws Error(Device) for a device that
+// does not meet the requirements.
 Context make_context(const CallerDevice& device, const ContextOptions& options = {});
 
 // A byte range of a buffer on the context's device. The buffer must have been
-// created with VK_BUFFER_USAGE_STORAGE_BUFFER_BIT and
-// VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT (its memory allocated with
-// VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT), and offset must be a multiple of
+// created with VK_BUFFER_USAGE_STORAGE_BUFFER_BIT and, where the context uses
+// device addresses, VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT (its memory
+// allocated with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT), and offset must be a multiple of
 // 16 and of the device's minStorageBufferOffsetAlignment.
 struct BufferRange {
     VkBuffer buffer = VK_NULL_HANDLE;
