@@ -12,6 +12,7 @@
 
 #include "expect_error.hpp"
 #include "test_support.hpp"
+#include "vk/buffer.hpp"
 #include "vk/context_impl.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/core/error.hpp"
@@ -156,6 +157,18 @@ TEST_F(VulkanDeviceProfiles, TwoFortySensorSkippingPlansOutgrowTheBarHeap) {
     EXPECT_TRUE(mentions(ctx.adaptations(), "device-local host-visible heap 2 (256 MiB) was full; buffers went to the "
                                             "system heap 1"))
         << joined(ctx.adaptations());
+}
+
+// With the host-visible window full, each plan's frames land in system
+// memory and are copied into device-local memory before its kernels run.
+TEST_F(VulkanDeviceProfiles, FramesInSystemMemoryAreStagedIntoDeviceMemory) {
+    Context ctx(with_profile("discrete-no-rebar"));
+    const vk::Buffer window(vk::ContextAccess::of(ctx), VkDeviceSize(256) << 20, vk::MemoryUse::Upload);
+    EXPECT_EQ(window.heap(), 2u);
+    EXPECT_TRUE(window.device_local());
+    expect_methods_match_reference(ctx);
+    EXPECT_TRUE(mentions(ctx.adaptations(), "copied into device-local memory before each cycle")) << joined(ctx.adaptations());
+    EXPECT_EQ(ctx.validation_message_count(), 0u);
 }
 
 TEST(FilterArithmeticNames, ParseAsInfoAndTheEnvironmentSpellThem) {

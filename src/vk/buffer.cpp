@@ -136,6 +136,10 @@ Buffer Buffer::borrow(Context::Impl& ctx, VkBuffer buffer, VkDeviceSize offset, 
 
 std::uint32_t Buffer::heap() const { return ctx_ ? ctx_->memory_types.heap_of(type_) : 0; }
 
+bool Buffer::device_local() const {
+    return ctx_ && (ctx_->memory_types.properties().memoryTypes[type_].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+
 void Buffer::invalidate() const {
     if (!ctx_ || !mapped_ || coherent_) return;
     VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};

@@ -44,6 +44,7 @@ public:
     void* mapped() const { return mapped_; }  // null for MemoryUse::Device
     DeviceSpan span() const { return {buffer_, offset_, size_, address_}; }
     std::uint32_t heap() const;  // the heap its memory came from
+    bool device_local() const;   // its memory type is DEVICE_LOCAL
     // Before the host reads what the device wrote (after the fence): makes it
     // visible in mapped() where the memory is not host-coherent.
     void invalidate() const;

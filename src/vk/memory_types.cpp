@@ -55,6 +55,12 @@ std::uint32_t MemoryTypes::visible_bits(std::uint32_t real_bits) const {
 
 bool MemoryTypes::shadowed(std::uint32_t type) const { return shadowed_[type]; }
 
+bool MemoryTypes::has_device_local() const {
+    for (std::uint32_t i = 0; i < visible_.memoryTypeCount; ++i)
+        if (visible_.memoryTypes[i].propertyFlags & kDeviceLocal) return true;
+    return false;
+}
+
 VkResult MemoryTypes::allocate(const Api& api, VkDevice device, VkMemoryAllocateInfo info, VkDeviceMemory* memory) {
     const std::uint32_t type = info.memoryTypeIndex;
     if (type >= visible_.memoryTypeCount) return VK_ERROR_OUT_OF_DEVICE_MEMORY;

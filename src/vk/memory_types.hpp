@@ -27,6 +27,7 @@ public:
 
     const VkPhysicalDeviceMemoryProperties& properties() const { return visible_; }
     bool simulated() const { return simulated_; }
+    bool has_device_local() const;  // some type is DEVICE_LOCAL
     // Visible types whose real type is among real_bits (a buffer's memoryTypeBits).
     std::uint32_t visible_bits(std::uint32_t real_bits) const;
     // Whether memory of visible type `type` is shadowed: the host works on a

@@ -62,7 +62,10 @@ PerSensorBuffers per_sensor_buffers(const Plan::Impl& p) {
     const vk::DeviceSpan image = !c.want_fused             ? vk::DeviceSpan{}
                                  : p.device_fused.handle() ? p.device_fused.span()
                                                            : p.readback.span().sub(0, p.partials_offset);
-    return {{p.device_frames.handle() ? p.device_frames.span() : p.upload.span(),
+    const vk::DeviceSpan frames = p.device_frames.handle()   ? p.device_frames.span()
+                                  : p.staged_frames.handle() ? p.staged_frames.span()
+                                                             : p.upload.span();
+    return {{frames,
              samples * pixel_bytes(c.input) * std::uint64_t(c.frames)},
             {image, samples * 4},
             {c.metrics.empty() ? vk::DeviceSpan{} : p.readback.span().sub(p.partials_offset),
@@ -95,6 +98,10 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     const std::size_t sensor_floats = plane_floats * cfg.channels;
     if (!device_frames.handle())
         upload = vk::Buffer(ctx, (frame_bytes * cfg.frames * cfg.sensors + 3) / 4 * 4, vk::MemoryUse::Upload);
+    if (upload.handle() && !upload.device_local() && ctx.memory_types.has_device_local()) {
+        staged_frames = vk::Buffer(ctx, upload.size(), vk::MemoryUse::Device);
+        ctx.adapted("frames uploaded to system memory are copied into device-local memory before each cycle");
+    }
     if (cfg.metrics.has(Metric::BackgroundDiff)) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
     const std::size_t S = std::size_t(cfg.sensors);
     if (cfg.input == PixelType::F32 && brovey()) {
@@ -158,6 +165,15 @@ void Plan::Impl::record() {
     sets.emplace(ctx);
     vk::Recorder rec(ctx, slot->recording_target(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed,
                      embedded, slot->query_count());
+    if (staged_frames.handle()) {
+        const VkCommandBuffer cmd = slot->recording_target();
+        vk::memory_barrier(*ctx.api, cmd, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_WRITE_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        const VkBufferCopy all{0, 0, upload.size()};
+        ctx.api->vkCmdCopyBuffer(cmd, upload.handle(), staged_frames.handle(), 1, &all);
+        vk::memory_barrier(*ctx.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    }
     if (cfg.skip.policy != SkipPolicy::Off) {
         skip.emplace(ctx, cfg, upload, addressed);
         rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, S);

@@ -203,6 +203,10 @@ struct Plan::Impl {
     vk::Buffer device_frames, device_fused;
     bool pending = false;   // submit()ted and not yet waited for
     vk::Buffer upload;      // frames as given, host-written each run (none with device_frames)
+    // Where upload landed outside device-local memory (a discrete GPU whose
+    // host-visible window is full): the kernels' frames, copied from upload
+    // at the start of each cycle, so they read device memory, not the bus.
+    vk::Buffer staged_frames;
     vk::Buffer background;  // planar float backgrounds, host-written by set_background
     vk::Buffer readback;    // fused HWC images, then the metric partials
     vk::Buffer thresholds;  // Brovey, float32 input: GraphBuilder::brovey_thresholds
