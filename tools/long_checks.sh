@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The long checks, run before a release (not in CI: about 30 minutes on 2
-# cores on top of a build): libFuzzer on every input parser, then the soaks at
-# full length. Needs the quick start's build (bash tools/quickstart.sh test).
+# The long checks, run before a release (not in CI: about 35 minutes on 2
+# cores on top of a build): libFuzzer on every input parser, the soaks at full
+# length, and the vulkan label under every simulated GPU variant. Needs the quick start's build (bash tools/quickstart.sh test).
 #
 #   bash tools/long_checks.sh            fuzz 60 s per target, full soaks
 #   FUZZ_SECONDS=600 bash tools/long_checks.sh
@@ -70,3 +70,10 @@ stage_done "soak: vkfuse run vulkan (10k)"
 #     each run.
 bash tests/soak/rig_soak.sh build/vkfuse 10000 --backend vulkan --object ball --motion slide --motion-period 1
 stage_done "soak: vkfuse run vulkan tiles (10k)"
+
+# 3. The whole vulkan label under each way a GPU differs from lavapipe:
+#    compensated float32 filters and every simulated device profile (CI runs
+#    the first; the label's VulkanDeviceProfiles runs every method under each
+#    profile).
+bash tools/vulkan_variants.sh build
+stage_done "vulkan label: GPU variants"
