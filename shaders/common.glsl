@@ -8,13 +8,28 @@
 // (PlanConfig::precision). Arithmetic is float32 in both; TO_PLANE() and
 // TO_PLANE4() round a result to the storage type. Uploads, backgrounds, metric
 // partials and read-back stay float32.
+//
+// float16 is storage only: loads and stores convert, no arithmetic is done in
+// float16 (the explicit-arithmetic extension only lets loads convert
+// implicitly), so the modules declare 16-bit storage and not the Float16
+// capability, and the device needs storageBuffer16BitAccess, not
+// shaderFloat16 (a test checks every module). How a float rounds to
+// float16 is the device's choice; where it rounds toward zero, an overflow
+// would give 65504 instead of infinity and escape the non-finite check that
+// turns it into Error(Numeric). So whatever rounds to infinity under
+// round-to-nearest (|x| >= 65520) is made infinite first, exactly.
 #ifdef VKFUSE_FP16_STORAGE
 #extension GL_EXT_shader_16bit_storage : require
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
-#define TO_PLANE(x) float16_t(x)
+const float kPlaneOverflow = 65520.0;
+float overflow_to_inf(float x) { return abs(x) >= kPlaneOverflow ? x * uintBitsToFloat(0x7f800000u) : x; }
+vec4 overflow_to_inf(vec4 x) {
+    return mix(x, x * uintBitsToFloat(0x7f800000u), greaterThanEqual(abs(x), vec4(kPlaneOverflow)));
+}
+#define TO_PLANE(x) float16_t(overflow_to_inf(x))
 #define plane_t float16_t
 #define plane4_t f16vec4
-#define TO_PLANE4(x) f16vec4(x)
+#define TO_PLANE4(x) f16vec4(overflow_to_inf(x))
 #else
 #define TO_PLANE(x) (x)
 #define plane_t float

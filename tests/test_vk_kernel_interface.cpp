@@ -3,6 +3,8 @@
 // kernels whose declarations are known, in both binding variants.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "vk/kernel_interface.hpp"
 #include "vk/shader_registry.hpp"
 #include "vkfuse/core/error.hpp"
@@ -44,6 +46,27 @@ TEST(KernelInterface, SharedPushBlocksDeclareTheirBuffersToo) {
     EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("dwt_forward_fp16_addr")).push_bytes, 4u * 8u + 13u * 4u);
     // The lifting kernels share the block, and bind every buffer of it.
     EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("lift_forward")).bindings, 4u);
+}
+
+// float16 planes are storage only: no module needs shaderFloat16, which the
+// context neither requires nor enables (16-bit storage is enough), and the
+// compensated kernels (and only they) take the context's SPLIT_PRODUCTS.
+TEST(KernelInterface, Fp16ModulesNeedOnlySixteenBitStorage) {
+    int fp16 = 0, compensated = 0;
+    for (const std::string& name : vk::shader_names()) {
+        const vk::KernelInterface k = vk::reflect_kernel(vk::shader_spirv(name));
+        EXPECT_FALSE(k.float16_arithmetic) << name;
+        fp16 += name.find("_fp16") != std::string::npos;
+        const bool dot2 = name.rfind("dwt_", 0) == 0 || name.rfind("lift_", 0) == 0;
+        if (name.find("_f64") == std::string::npos) {
+            EXPECT_EQ(k.splits_products, dot2) << name;
+        }
+        compensated += k.splits_products;
+        EXPECT_GT(k.invocations, 0u) << name;
+        EXPECT_LE(k.invocations, 256u) << name;  // the phone profile's limit
+    }
+    EXPECT_GT(fp16, 20);
+    EXPECT_GT(compensated, 8);
 }
 
 TEST(KernelInterface, RejectsWordsThatAreNotSpirv) {

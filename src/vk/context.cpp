@@ -284,9 +284,9 @@ void Context::Impl::create_device() {
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     f12.bufferDeviceAddress = device_addresses ? VK_TRUE : VK_FALSE;
     f12.timelineSemaphore = VK_TRUE;  // required of every Vulkan 1.2 device: vkfuse::submit signals one
-    // The _fp16 kernels' float16 planes, enabled only where the device has them.
+    // The _fp16 kernels' float16 planes (storage only: loads and stores
+    // convert, so shaderFloat16 is not needed), enabled where the device has them.
     f11.storageBuffer16BitAccess = info.fp16_storage;
-    f12.shaderFloat16 = info.fp16_storage;
     f12.pNext = &f11;
     // The _f64 kernels' doubles, enabled only when the context uses them.
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};

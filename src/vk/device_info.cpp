@@ -56,7 +56,7 @@ PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
     f12.pNext = &f11;
     api.vkGetPhysicalDeviceFeatures2(dev, &f);
     e.info.device_addresses = f12.bufferDeviceAddress;
-    e.info.fp16_storage = f11.storageBuffer16BitAccess && f12.shaderFloat16;
+    e.info.fp16_storage = f11.storageBuffer16BitAccess;  // storage only: no module needs shaderFloat16
     e.info.float64 = f.features.shaderFloat64;
     std::uint32_t n = 0;
     api.vkEnumerateDeviceExtensionProperties(dev, nullptr, &n, nullptr);

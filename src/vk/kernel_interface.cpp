@@ -13,7 +13,7 @@ namespace {
 
 // The few SPIR-V opcodes, decorations and storage classes read here.
 constexpr std::uint32_t kMagic = 0x07230203;
-constexpr std::uint32_t OpExecutionMode = 16, ExecutionModeLocalSize = 17;
+constexpr std::uint32_t OpExecutionMode = 16, ExecutionModeLocalSize = 17, OpCapability = 17, CapabilityFloat16 = 9;
 constexpr std::uint32_t OpTypeInt = 21, OpTypeFloat = 22, OpTypeVector = 23, OpTypeStruct = 30, OpTypePointer = 32,
                         OpVariable = 59, OpDecorate = 71, OpMemberDecorate = 72;
 constexpr std::uint32_t DecorationSpecId = 1, DecorationBinding = 33, DecorationOffset = 35;
@@ -31,12 +31,15 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
     std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> pointers;  // id -> (storage class, pointee)
     std::map<std::uint32_t, std::uint32_t> bindings;           // variable id -> binding
     std::uint32_t push_pointer = 0, invocations = 0;
-    bool splits_products = false;
+    bool splits_products = false, float16_arithmetic = false;
     for (std::size_t at = 5; at < spirv.size();) {
         const std::uint32_t count = spirv[at] >> 16, op = spirv[at] & 0xffff;
         if (count == 0 || at + count > spirv.size()) bad("truncated instruction");
         const std::uint32_t* w = &spirv[at];
         switch (op) {
+            case OpCapability:
+                if (count >= 2 && w[1] == CapabilityFloat16) float16_arithmetic = true;
+                break;
             case OpExecutionMode:
                 if (count >= 6 && w[2] == ExecutionModeLocalSize) invocations = w[3] * w[4] * w[5];
                 break;
@@ -67,6 +70,7 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
     KernelInterface k;
     k.invocations = invocations;
     k.splits_products = splits_products;
+    k.float16_arithmetic = float16_arithmetic;
     std::set<std::uint32_t> used;
     for (const auto& [variable, binding] : bindings) used.insert(binding);
     k.bindings = std::uint32_t(used.size());

@@ -18,6 +18,7 @@ struct KernelInterface {
     std::uint32_t push_bytes = 0;  // end of the push-constant block's last member
     std::uint32_t invocations = 0;  // per workgroup: its local size x * y * z
     bool splits_products = false;   // declares SPLIT_PRODUCTS: a compensated float32 kernel
+    bool float16_arithmetic = false;  // declares the Float16 capability (shaderFloat16)
 };
 
 // Reads the interface from SPIR-V words. Throws Error(Device) on words that

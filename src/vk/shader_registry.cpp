@@ -32,6 +32,12 @@ const Entry* find(const std::string& name) {
 
 bool has_shader(const std::string& name) { return find(name) != nullptr; }
 
+std::vector<std::string> shader_names() {
+    std::vector<std::string> names;
+    for (const auto& e : kShaders) names.emplace_back(e.name);
+    return names;
+}
+
 std::span<const std::uint32_t> shader_spirv(const std::string& name) {
     if (const Entry* e = find(name)) return {e->words, e->count};
     throw Error(ErrorKind::Device, "internal: no embedded shader named " + name);

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace vkfuse::vk {
 
@@ -10,5 +11,7 @@ namespace vkfuse::vk {
 std::span<const std::uint32_t> shader_spirv(const std::string& name);
 // Whether a shader (variant) of that name is embedded.
 bool has_shader(const std::string& name);
+// Every embedded shader (variant), in build order.
+std::vector<std::string> shader_names();
 
 }  // namespace vkfuse::vk

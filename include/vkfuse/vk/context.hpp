@@ -21,7 +21,7 @@ struct DeviceInfo {
     std::string api_version;  // "1.3.230"
     bool usable = false;      // meets vkfuse's needs (Vulkan 1.2, a compute queue)
     std::string why_not;      // when !usable, the missing capability
-    bool fp16_storage = false;  // 16-bit storage buffers and float16 in shaders: Precision::Fp16Storage
+    bool fp16_storage = false;  // 16-bit storage buffers (storageBuffer16BitAccess): Precision::Fp16Storage
     bool float64 = false;       // double arithmetic in shaders: FilterArithmetic::Float64
     // bufferDeviceAddress: kernels may reach buffers by address (plans whose
     // one sensor exceeds a binding's range need it; without it every kernel binds).

@@ -41,7 +41,7 @@ struct CallerDevice {
     // Where vkfuse finds the entry points; null: the loader's (libvulkan.so.1).
     PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
     bool shader_float64 = false;       // shaderFloat64: FilterArithmetic::Float64 available
-    bool fp16_storage = false;         // storageBuffer16BitAccess + shaderFloat16: Precision::Fp16Storage
+    bool fp16_storage = false;         // storageBuffer16BitAccess: Precision::Fp16Storage
     bool external_memory_fd = false;   // VK_KHR_external_memory_fd: DeviceMemory's fd import and export
     bool external_memory_host = false; // VK_EXT_external_memory_host: DeviceMemory::import_host
     // bufferDeviceAddress enabled (kernels beyond a binding's range, or with
