@@ -184,6 +184,8 @@ void Plan::Impl::record() {
         record_sensors(rec, from, std::min(block, S - from),
                        from == 0 ? std::nullopt : std::optional<std::size_t>(first_intermediate));
     rec.finish();
+    dispatches = rec.dispatches();
+    barriers = rec.barriers();
     stage_names = rec.stage_names();
     if (skip) skip->set_dispatches(rec.sensor_dispatches());
 }

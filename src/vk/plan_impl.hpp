@@ -213,6 +213,7 @@ struct Plan::Impl {
     std::vector<vk::Buffer> buffers;
     std::optional<vk::DescriptorSets> sets;  // the bound kernels' descriptors, written by record()
     bool addressed = false;                  // sensors_per_block() 0, or ContextOptions::device_addresses_only
+    std::uint32_t dispatches = 0, barriers = 0;  // what record() recorded (Recorder)
     // A skipping plan's detection and compaction (vk/plan_skip.hpp); before
     // `slot`, so the fusion command buffer that reads its indirect arguments
     // is released first.

@@ -70,10 +70,29 @@ std::string Recorder::kernel_name(const std::string& shader, bool addressed) con
     return shader + variant;
 }
 
-void Recorder::begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization) {
-    if (!first_)
+bool Recorder::touches_pending(std::span<const DeviceSpan> buffers) const {
+    for (const DeviceSpan& b : buffers)
+        for (const DeviceSpan& p : pending_)
+            if (b.buffer && b.buffer == p.buffer && b.offset < p.offset + p.bytes && p.offset < b.offset + b.bytes)
+                return true;
+    return false;
+}
+
+void Recorder::begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization,
+                              std::span<const DeviceSpan> buffers) {
+    // A barrier only where this dispatch reaches a byte that a dispatch since
+    // the last barrier reached (read or written: every buffer counts as both),
+    // so independent dispatches (each level's lap_fuse, the metrics beside a
+    // pass they do not read) may overlap on the device.
+    if (!first_ && touches_pending(buffers)) {
         barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        pending_.clear();
+        ++barriers_;
+    }
+    for (const DeviceSpan& b : buffers)
+        if (b.buffer) pending_.push_back(b);
+    ++dispatches_;
     first_ = false;
     ctx_.api->vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(kernel, specialization));
 }
@@ -86,7 +105,7 @@ void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceS
     // them by address (the context allows that only with device addresses).
     const bool addressed = addressed_ || buffers.size() > ctx_.bound_buffers;
     const std::string kernel = kernel_name(shader, addressed);
-    begin_dispatch(kernel, specialization);
+    begin_dispatch(kernel, specialization, std::span(buffers.begin(), buffers.size()));
     auto& api = *ctx_.api;
     PushConstants push;
     if (addressed) {

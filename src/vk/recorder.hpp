@@ -1,5 +1,7 @@
-// Records a plan's dispatches into one command buffer: a barrier between
-// dependent dispatches and, when profiling, a timestamp after each stage.
+// Records a plan's dispatches into one command buffer: a barrier before a
+// dispatch that reaches what an earlier one since the last barrier reached
+// (dependent dispatches; independent ones are left to overlap) and, when
+// profiling, a timestamp after each stage.
 #pragma once
 #include <array>
 #include <string>
@@ -32,7 +34,7 @@ public:
 
     // Records shader over groups (x, y, z) with `buffers` in the order of its
     // BUFFERS list (shaders/bindings.glsl) and `scalars`, the rest of its
-    // push-constant block. Everything the previous dispatches wrote is visible
+    // push-constant block. Everything the previous dispatches wrote to its buffers is visible
     // to it. specialization: the values of its constant_id 0, 1, ...
     void dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers, const PushConstants& scalars,
                   std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
@@ -54,6 +56,10 @@ public:
     void finish();  // makes shader writes visible to the host and ends the buffer
 
     const std::vector<std::string>& stage_names() const { return names_; }
+    // Dispatches recorded, and the barriers between them (fewer than
+    // dispatches - 1 where some were independent).
+    std::uint32_t dispatches() const { return dispatches_; }
+    std::uint32_t barriers() const { return barriers_; }
 
 private:
     Context::Impl& ctx_;
@@ -68,12 +74,16 @@ private:
     VkBuffer indirect_ = VK_NULL_HANDLE;
     std::uint32_t indirect_capacity_ = 0, sensors_ = 1;
     std::vector<std::array<std::uint32_t, 3>> per_sensor_;
+    std::vector<DeviceSpan> pending_;  // what the dispatches since the last barrier reached
+    std::uint32_t dispatches_ = 0, barriers_ = 0;
 
     void barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
                  VkAccessFlags dst_access);
     // The embedded variant of shader this recorder dispatches.
     std::string kernel_name(const std::string& shader, bool addressed) const;
-    void begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization);
+    void begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization,
+                        std::span<const DeviceSpan> buffers);
+    bool touches_pending(std::span<const DeviceSpan> buffers) const;
 };
 
 // A global memory barrier from (src, src_access) to (dst, dst_access). Its
