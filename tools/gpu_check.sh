@@ -38,6 +38,7 @@ step vulkan_label 240 bash -c "cd '$build' && ctest -L vulkan -j\"\$(nproc)\" --
 label_rc=$step_rc
 label_s=$step_s
 summary=$(grep -E 'tests passed, [0-9]+ tests? failed out of [0-9]+' "$work/vulkan_label.log" | tail -1)
+[ -n "$summary" ] || { label_rc=${label_rc/#0/1}; summary="no tests ran"; }  # a tree without the tests is no pass
 failed_tests=$(sed -n 's/^[[:space:]]*[0-9]* - \(.*\) (.*)$/\1/p' "$work/vulkan_label.log" | sed 's/.*/"&"/' | paste -sd, -)
 
 step bench_default 240 "$build/bench/vkfuse-bench" --json "$work/bench_default.json"
