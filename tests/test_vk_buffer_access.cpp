@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <cstring>
 #include <string>
@@ -235,12 +236,11 @@ TEST_F(VulkanBufferAccess, SkippingPlansBeyondOneBindingTakeDeviceAddresses) {
     EXPECT_TRUE(vk::PlanAccess::of(*plan).addressed);
 }
 
-// Barriers only between dependent dispatches: one that reaches nothing the
-// dispatches since the last barrier reached needs none. Every buffer counts
-// as read and written (the kernels do not yet declare which they only read),
-// so a 4-level Laplacian plan saves one barrier of its 14; the synchronization
-// validation on every Vulkan test checks that none needed is missing, and the
-// results are every other test's.
+// Barriers only between dependent dispatches: one that neither writes what
+// the dispatches since the last barrier reached nor reaches what they wrote
+// needs none (a Laplacian pyramid's levels are fused independently). The
+// synchronization validation on every Vulkan test checks that none needed is
+// missing, and the results are every other test's.
 TEST_F(VulkanBufferAccess, IndependentDispatchesShareABarrier) {
     FusionSpec spec;
     spec.method = Method::Laplacian;
@@ -249,7 +249,8 @@ TEST_F(VulkanBufferAccess, IndependentDispatchesShareABarrier) {
     Plan plan(ctx(), cfg);
     const auto& im = vk::PlanAccess::of(plan);
     EXPECT_GT(im.dispatches, 8u);
-    EXPECT_LT(im.barriers, im.dispatches - 1) << im.barriers << " barriers, " << im.dispatches << " dispatches";
+    std::printf("4-level Laplacian plan: %u dispatches, %u barriers\n", im.dispatches, im.barriers);
+    EXPECT_LE(im.barriers + 3, im.dispatches - 1) << im.barriers << " barriers, " << im.dispatches << " dispatches";
     const Results r = run(ctx(), spec, Shape{96, 128, 3, 3, 1, PixelType::U8});
     EXPECT_EQ(r.fused.size(), 1u);
 }

@@ -69,6 +69,24 @@ TEST(KernelInterface, Fp16ModulesNeedOnlySixteenBitStorage) {
     EXPECT_GT(compensated, 8);
 }
 
+// Which buffers a kernel writes, read from its stores and atomics: the
+// recorder's barriers follow it.
+TEST(KernelInterface, WrittenBuffersAreThoseStoredTo) {
+    // pack.comp: src, src4 read; image, image_quads written.
+    EXPECT_EQ(vk::reflect_kernel(vk::shader_spirv("pack")).written, 0b1100u);
+    // change_detect.comp: frames, means, noise, previous read; scores and statics by atomicMax.
+    const vk::KernelInterface detect = vk::reflect_kernel(vk::shader_spirv("change_detect"));
+    EXPECT_EQ(detect.bindings, 6u);
+    EXPECT_EQ(detect.written, 0b101000u);
+    for (const std::string& name : vk::shader_names()) {
+        const vk::KernelInterface k = vk::reflect_kernel(vk::shader_spirv(name));
+        if (k.bindings > 0) {
+            EXPECT_NE(k.written, 0u) << name << " writes nothing";
+        }
+        EXPECT_EQ(k.written >> k.bindings, 0u) << name;
+    }
+}
+
 TEST(KernelInterface, RejectsWordsThatAreNotSpirv) {
     const std::uint32_t words[] = {1, 2, 3, 4, 5, 6};
     EXPECT_THROW(vk::reflect_kernel(words), Error);

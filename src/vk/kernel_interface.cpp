@@ -14,6 +14,9 @@ namespace {
 // The few SPIR-V opcodes, decorations and storage classes read here.
 constexpr std::uint32_t kMagic = 0x07230203;
 constexpr std::uint32_t OpExecutionMode = 16, ExecutionModeLocalSize = 17, OpCapability = 17, CapabilityFloat16 = 9;
+constexpr std::uint32_t OpStore = 62, OpCopyMemory = 63, OpAccessChain = 65, OpInBoundsAccessChain = 66,
+                        OpPtrAccessChain = 67, OpAtomicStore = 228, OpAtomicFirst = 229, OpAtomicLast = 242,
+                        OpAtomicFAddEXT = 6035;
 constexpr std::uint32_t OpTypeInt = 21, OpTypeFloat = 22, OpTypeVector = 23, OpTypeStruct = 30, OpTypePointer = 32,
                         OpVariable = 59, OpDecorate = 71, OpMemberDecorate = 72;
 constexpr std::uint32_t DecorationSpecId = 1, DecorationBinding = 33, DecorationOffset = 35;
@@ -32,10 +35,19 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
     std::map<std::uint32_t, std::uint32_t> bindings;           // variable id -> binding
     std::uint32_t push_pointer = 0, invocations = 0;
     bool splits_products = false, float16_arithmetic = false;
+    std::map<std::uint32_t, std::uint32_t> chain_base;  // access chain id -> the id it indexes
+    std::set<std::uint32_t> stored;                      // pointers stored through (directly or by atomics)
     for (std::size_t at = 5; at < spirv.size();) {
         const std::uint32_t count = spirv[at] >> 16, op = spirv[at] & 0xffff;
         if (count == 0 || at + count > spirv.size()) bad("truncated instruction");
         const std::uint32_t* w = &spirv[at];
+        if (op == OpAccessChain || op == OpInBoundsAccessChain || op == OpPtrAccessChain) {
+            if (count >= 4) chain_base[w[2]] = w[3];
+        } else if (op == OpStore || op == OpCopyMemory || op == OpAtomicStore) {
+            if (count >= 2) stored.insert(w[1]);
+        } else if ((op >= OpAtomicFirst && op <= OpAtomicLast) || op == OpAtomicFAddEXT) {
+            if (count >= 4) stored.insert(w[3]);
+        }
         switch (op) {
             case OpCapability:
                 if (count >= 2 && w[1] == CapabilityFloat16) float16_arithmetic = true;
@@ -71,6 +83,10 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
     k.invocations = invocations;
     k.splits_products = splits_products;
     k.float16_arithmetic = float16_arithmetic;
+    for (std::uint32_t pointer : stored) {
+        for (int depth = 0; depth < 64 && chain_base.count(pointer); ++depth) pointer = chain_base[pointer];
+        if (const auto b = bindings.find(pointer); b != bindings.end()) k.written |= 1u << b->second;
+    }
     std::set<std::uint32_t> used;
     for (const auto& [variable, binding] : bindings) used.insert(binding);
     k.bindings = std::uint32_t(used.size());

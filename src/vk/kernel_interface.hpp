@@ -19,6 +19,10 @@ struct KernelInterface {
     std::uint32_t invocations = 0;  // per workgroup: its local size x * y * z
     bool splits_products = false;   // declares SPLIT_PRODUCTS: a compensated float32 kernel
     bool float16_arithmetic = false;  // declares the Float16 capability (shaderFloat16)
+    // Bit b set: binding b is written (a store or an atomic reaches it); the
+    // rest are only read. Read from the bound variant; the addressed one takes
+    // the same buffers in the same order.
+    std::uint32_t written = 0;
 };
 
 // Reads the interface from SPIR-V words. Throws Error(Device) on words that

@@ -70,28 +70,33 @@ std::string Recorder::kernel_name(const std::string& shader, bool addressed) con
     return shader + variant;
 }
 
-bool Recorder::touches_pending(std::span<const DeviceSpan> buffers) const {
-    for (const DeviceSpan& b : buffers)
-        for (const DeviceSpan& p : pending_)
-            if (b.buffer && b.buffer == p.buffer && b.offset < p.offset + p.bytes && p.offset < b.offset + b.bytes)
+bool Recorder::depends_on_pending(std::span<const DeviceSpan> buffers, std::uint32_t written) const {
+    for (std::size_t i = 0; i < buffers.size(); ++i) {
+        const DeviceSpan& b = buffers[i];
+        const bool writes = written >> i & 1u;
+        for (const Access& p : pending_)
+            if (b.buffer && b.buffer == p.span.buffer && b.offset < p.span.offset + p.span.bytes &&
+                p.span.offset < b.offset + b.bytes && (writes || p.written))
                 return true;
+    }
     return false;
 }
 
 void Recorder::begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization,
-                              std::span<const DeviceSpan> buffers) {
-    // A barrier only where this dispatch reaches a byte that a dispatch since
-    // the last barrier reached (read or written: every buffer counts as both),
-    // so independent dispatches (each level's lap_fuse, the metrics beside a
-    // pass they do not read) may overlap on the device.
-    if (!first_ && touches_pending(buffers)) {
+                              std::span<const DeviceSpan> buffers, std::uint32_t written) {
+    // A barrier only where this dispatch writes a byte that a dispatch since
+    // the last barrier reached, or reaches one that such a dispatch wrote
+    // (which of its buffers a kernel writes is read from its SPIR-V), so
+    // independent dispatches (each level's lap_fuse, passes that only read the
+    // same frames) may overlap on the device.
+    if (!first_ && depends_on_pending(buffers, written)) {
         barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         pending_.clear();
         ++barriers_;
     }
-    for (const DeviceSpan& b : buffers)
-        if (b.buffer) pending_.push_back(b);
+    for (std::size_t i = 0; i < buffers.size(); ++i)
+        if (buffers[i].buffer) pending_.push_back({buffers[i], (written >> i & 1u) != 0});
     ++dispatches_;
     first_ = false;
     ctx_.api->vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(kernel, specialization));
@@ -105,7 +110,9 @@ void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceS
     // them by address (the context allows that only with device addresses).
     const bool addressed = addressed_ || buffers.size() > ctx_.bound_buffers;
     const std::string kernel = kernel_name(shader, addressed);
-    begin_dispatch(kernel, specialization, std::span(buffers.begin(), buffers.size()));
+    // Which buffers it writes: the bound variant's bindings, in the order both take them.
+    const std::uint32_t written = ctx_.kernel_interface(kernel_name(shader, false)).written;
+    begin_dispatch(kernel, specialization, std::span(buffers.begin(), buffers.size()), written);
     auto& api = *ctx_.api;
     PushConstants push;
     if (addressed) {

@@ -1,7 +1,7 @@
 // Records a plan's dispatches into one command buffer: a barrier before a
-// dispatch that reaches what an earlier one since the last barrier reached
-// (dependent dispatches; independent ones are left to overlap) and, when
-// profiling, a timestamp after each stage.
+// dispatch that writes what an earlier one since the last barrier reached, or
+// reaches what such a one wrote (dependent dispatches; independent ones are
+// left to overlap) and, when profiling, a timestamp after each stage.
 #pragma once
 #include <array>
 #include <string>
@@ -74,7 +74,11 @@ private:
     VkBuffer indirect_ = VK_NULL_HANDLE;
     std::uint32_t indirect_capacity_ = 0, sensors_ = 1;
     std::vector<std::array<std::uint32_t, 3>> per_sensor_;
-    std::vector<DeviceSpan> pending_;  // what the dispatches since the last barrier reached
+    struct Access {
+        DeviceSpan span;
+        bool written;
+    };
+    std::vector<Access> pending_;  // what the dispatches since the last barrier reached
     std::uint32_t dispatches_ = 0, barriers_ = 0;
 
     void barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
@@ -82,8 +86,8 @@ private:
     // The embedded variant of shader this recorder dispatches.
     std::string kernel_name(const std::string& shader, bool addressed) const;
     void begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization,
-                        std::span<const DeviceSpan> buffers);
-    bool touches_pending(std::span<const DeviceSpan> buffers) const;
+                        std::span<const DeviceSpan> buffers, std::uint32_t written);
+    bool depends_on_pending(std::span<const DeviceSpan> buffers, std::uint32_t written) const;
 };
 
 // A global memory barrier from (src, src_access) to (dst, dst_access). Its
