@@ -171,6 +171,45 @@ TEST_F(VulkanDeviceProfiles, FramesInSystemMemoryAreStagedIntoDeviceMemory) {
     EXPECT_EQ(ctx.validation_message_count(), 0u);
 }
 
+std::uint64_t vkfuse_bytes(const Context& ctx) {
+    std::uint64_t sum = 0;
+    for (const MemoryHeap& h : ctx.memory_heaps()) sum += h.vkfuse_bytes;
+    return sum;
+}
+
+// Every heap says what this context allocated from it (a plan's buffers, and
+// nothing once the plan is gone), and its budget where the device reports one.
+TEST_F(VulkanDeviceProfiles, HeapsSayWhatVkfuseAllocatedFromEach) {
+    Context ctx(validated_options());
+    const std::vector<MemoryHeap> heaps = ctx.memory_heaps();
+    ASSERT_FALSE(heaps.empty());
+    for (const MemoryHeap& h : heaps) {
+        EXPECT_GT(h.bytes, 0u);
+        if (h.budget) {
+            EXPECT_GT(*h.budget, 0u);
+        }
+    }
+    const std::uint64_t before = vkfuse_bytes(ctx);
+    {
+        PlanConfig cfg;
+        cfg.height = 240;
+        cfg.width = 320;
+        cfg.frames = 3;
+        cfg.sensors = 4;
+        Plan plan(ctx, cfg);
+        const std::uint64_t frames = std::uint64_t(4) * 3 * 240 * 320 * 3 * sizeof(float);
+        EXPECT_GE(vkfuse_bytes(ctx), before + frames);
+    }
+    EXPECT_EQ(vkfuse_bytes(ctx), before);
+    Context discrete(with_profile("discrete-no-rebar"));
+    const std::vector<MemoryHeap> simulated = discrete.memory_heaps();
+    ASSERT_EQ(simulated.size(), 3u);
+    EXPECT_EQ(simulated[2].bytes, std::uint64_t(256) << 20);
+    EXPECT_TRUE(simulated[2].device_local && simulated[2].host_visible);
+    EXPECT_FALSE(simulated[0].host_visible);
+    EXPECT_FALSE(simulated[2].budget.has_value());  // a simulated heap has no reported budget
+}
+
 TEST(FilterArithmeticNames, ParseAsInfoAndTheEnvironmentSpellThem) {
     EXPECT_EQ(parse_filter_arithmetic("compensated-float32"), FilterArithmetic::CompensatedFloat32);
     EXPECT_EQ(parse_filter_arithmetic("compensated float32"), FilterArithmetic::CompensatedFloat32);

@@ -50,6 +50,15 @@ void print_auto_choice() {
                     to_string(context.filter_arithmetic()).data());
         context.splits_products();  // asks the device about fma now, so that its answer is listed
         for (const std::string& what : context.adaptations()) std::printf("  adapted: %s\n", what.c_str());
+        const auto mib = [](std::uint64_t bytes) { return static_cast<unsigned long long>(bytes >> 20); };
+        const std::vector<MemoryHeap> heaps = context.memory_heaps();
+        for (std::size_t h = 0; h < heaps.size(); ++h) {
+            const MemoryHeap& m = heaps[h];
+            std::printf("  memory heap %zu: %s%s, %llu MiB", h, m.device_local ? "device-local" : "system",
+                        m.host_visible ? " host-visible" : "", mib(m.bytes));
+            if (m.budget) std::printf(", budget %llu MiB, in use %llu MiB", mib(*m.budget), mib(m.usage.value_or(0)));
+            std::printf("\n");
+        }
     } catch (const Error& e) {
         if (e.kind() != ErrorKind::Device) throw;
         std::printf("--backend auto uses the CPU reference path (%s)\n", e.what());

@@ -24,6 +24,7 @@ namespace vkfuse::vk {
     X(vkGetPhysicalDeviceFeatures2)               \
     X(vkGetPhysicalDeviceQueueFamilyProperties)   \
     X(vkGetPhysicalDeviceMemoryProperties)        \
+    X(vkGetPhysicalDeviceMemoryProperties2)       \
     X(vkGetPhysicalDeviceExternalBufferProperties) \
     X(vkCreateDevice)                             \
     X(vkEnumerateDeviceExtensionProperties)       \

@@ -296,6 +296,15 @@ void Context::Impl::create_device() {
     std::vector<const char*> extensions;
     if (info.external_memory_fd) extensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     if (info.external_memory_host) extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+    // Heap budgets (Context::memory_heaps), where the device reports them.
+    std::uint32_t available = 0;
+    api->vkEnumerateDeviceExtensionProperties(physical, nullptr, &available, nullptr);
+    std::vector<VkExtensionProperties> offered(available);
+    api->vkEnumerateDeviceExtensionProperties(physical, nullptr, &available, offered.data());
+    memory_budget = std::any_of(offered.begin(), offered.end(), [](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME) == 0;
+    });
+    if (memory_budget) extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &f2;
     dci.queueCreateInfoCount = 1;
@@ -516,6 +525,35 @@ FilterArithmetic Context::filter_arithmetic() const { return impl_->filter_arith
 bool Context::splits_products() const { return impl_->products_split(); }
 std::string Context::device_profile() const { return impl_->profile ? std::string(impl_->profile->name) : ""; }
 std::vector<std::string> Context::adaptations() const { return impl_->adaptations(); }
+
+std::vector<MemoryHeap> Context::memory_heaps() const {
+    const Impl& im = *impl_;
+    const auto& memory = im.memory_types.properties();
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budgets{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+    const bool with_budget = im.memory_budget && !im.memory_types.simulated() && im.api->vkGetPhysicalDeviceMemoryProperties2;
+    if (with_budget) {
+        VkPhysicalDeviceMemoryProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+        props.pNext = &budgets;
+        im.api->vkGetPhysicalDeviceMemoryProperties2(im.physical, &props);
+    }
+    std::vector<MemoryHeap> heaps;
+    for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h) {
+        MemoryHeap heap;
+        heap.bytes = memory.memoryHeaps[h].size;
+        heap.device_local = memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT;
+        for (std::uint32_t t = 0; t < memory.memoryTypeCount; ++t)
+            if (memory.memoryTypes[t].heapIndex == h &&
+                (memory.memoryTypes[t].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT))
+                heap.host_visible = true;
+        heap.vkfuse_bytes = im.memory_types.heap_used(h);
+        if (with_budget) {
+            heap.budget = budgets.heapBudget[h];
+            heap.usage = budgets.heapUsage[h];
+        }
+        heaps.push_back(heap);
+    }
+    return heaps;
+}
 
 std::vector<std::string> device_profile_names() {
     std::vector<std::string> names;

@@ -39,6 +39,7 @@ struct Context::Impl {
     // kMaxKernelBuffers, or fewer where maxPerStageDescriptorStorageBuffers is
     // lower; a kernel with more reaches them through device addresses.
     std::uint32_t bound_buffers = 0;
+    bool memory_budget = false;  // VK_EXT_memory_budget enabled
     bool timestamps = false;  // queue supports timestamp queries
     std::uint32_t timestamp_bits = 0;  // the queue's timestampValidBits: the counter wraps at 2^bits
     // false on a caller's device (vk/interop.hpp): the instance, device and

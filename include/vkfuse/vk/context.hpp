@@ -90,6 +90,17 @@ std::vector<std::string> device_profile_names();
 // device: a program checks them before its first output.
 void check_vulkan_environment();
 
+// One memory heap as vkfuse sees it (a simulated profile's, where one is in use).
+struct MemoryHeap {
+    std::uint64_t bytes = 0;           // the heap's size
+    bool device_local = false;
+    bool host_visible = false;         // some memory type of the heap is host-visible
+    std::uint64_t vkfuse_bytes = 0;    // allocated by this context now
+    // VK_EXT_memory_budget, where the device has it (and no profile is
+    // simulated): what the process may use of the heap, and uses, now.
+    std::optional<std::uint64_t> budget, usage;
+};
+
 // Owns a VkInstance, one VkDevice and its compute queue. Cheap to move, not
 // copyable; several Contexts may live in one process, and one Context may be
 // shared by threads (pipeline creation and queue submission are locked). Throws Error(Device)
@@ -110,6 +121,10 @@ public:
     // device's fma is not fused, or ContextOptions::split_products); false
     // under Float64.
     bool splits_products() const;
+    // Every memory heap, with what this context has allocated from each and,
+    // with VK_EXT_memory_budget, the process's budget and usage: where a
+    // plan's buffers went (Context::adaptations() says when a heap was full).
+    std::vector<MemoryHeap> memory_heaps() const;
     // The simulated device profile in use, "" for none.
     std::string device_profile() const;
     // What vkfuse changed to fit this device, one sentence each, in the order
