@@ -45,7 +45,16 @@ std::vector<std::uint32_t> candidate_types(const Context::Impl& ctx, std::uint32
     return types;
 }
 
+[[noreturn]] void unbacked(const std::string& subject, VkDeviceSize bytes) {
+    throw OutOfMemory(subject + ": " + std::to_string(bytes) +
+                      " bytes reported allocated that the driver could not back (out of memory)");
+}
+
 }  // namespace
+
+void check_mapping_backed(const void* mapped, VkDeviceSize bytes, const std::string& subject) {
+    if (mapped == reinterpret_cast<const void*>(~std::uintptr_t(0))) unbacked(subject, bytes);
+}
 
 VkBufferUsageFlags Buffer::usage(const Context::Impl& ctx) {
     return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -90,6 +99,7 @@ Buffer::Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use) : ctx_(&ct
         coherent_ = (flags_of_type & kCoherent) != 0;
         if (use != MemoryUse::Device) {
             check(api.vkMapMemory(ctx.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+            check_mapping_backed(mapped_, req.size, "Vulkan vkAllocateMemory");
             if (ctx.memory_types.shadowed(type_)) {
                 memory_mapping_ = mapped_;
                 shadow_ = std::make_unique<std::byte[]>(bci.size);
@@ -97,14 +107,9 @@ Buffer::Buffer(Context::Impl& ctx, VkDeviceSize bytes, MemoryUse use) : ctx_(&ct
             }
         }
         address_ = device_address(ctx, buffer_, bci.size);
-        // lavapipe's memory is a host mapping: where mmap fails (an address
-        // space limit) it still reports success, and the buffer's address and
-        // mapping read MAP_FAILED, all ones.
-        const void* map_failed = reinterpret_cast<void*>(~std::uintptr_t(0));
-        if ((ctx.device_addresses && (address_ == 0 || address_ == ~VkDeviceAddress(0))) || mapped_ == map_failed ||
-            memory_mapping_ == map_failed)
-            throw OutOfMemory("Vulkan vkAllocateMemory: " + std::to_string(req.size) +
-                              " bytes reported allocated that the driver could not back (out of memory)");
+        // Unbacked lavapipe memory (check_mapping_backed) reads MAP_FAILED as an address too.
+        if (ctx.device_addresses && (address_ == 0 || address_ == ~VkDeviceAddress(0)))
+            unbacked("Vulkan vkAllocateMemory", req.size);
     } catch (...) {
         release();
         throw;

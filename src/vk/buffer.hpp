@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "vk/context_impl.hpp"
 #include "vk/device_span.hpp"
@@ -19,6 +20,13 @@ enum class MemoryUse {
     Readback,  // device writes, host reads: host-visible cached, coherent or not
                // (invalidate() before reading), else host-visible
 };
+
+// lavapipe's memory is a host mapping: where mmap fails (an address space
+// limit) it still reports success, and a mapping of the memory reads
+// MAP_FAILED, all ones. For such a mapping this throws OutOfMemory
+// "<subject>: <bytes> bytes reported allocated that the driver could not back
+// (out of memory)"; every vkMapMemory of the library's checks its result here.
+void check_mapping_backed(const void* mapped, VkDeviceSize bytes, const std::string& subject);
 
 class Buffer {
 public:

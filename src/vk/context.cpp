@@ -128,7 +128,6 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
                                                         " queues of family " + std::to_string(caller.queue_family));
         queue_family = caller.queue_family;
         timestamp_bits = families[queue_family].timestampValidBits;
-        timestamps = timestamp_bits > 0;
         device = caller.device;
         api->load_device(device);
         api->vkGetDeviceQueue(device, queue_family, caller.queue_index, &queue);
@@ -211,6 +210,7 @@ void Context::Impl::choose_device(int index) {
     }
     physical = chosen->handle;
     info = chosen->info;
+    memory_budget = chosen->memory_budget;
     device_addresses = info.device_addresses;
     api->vkGetPhysicalDeviceProperties(physical, &properties);
     VkPhysicalDeviceMemoryProperties memory{};
@@ -223,9 +223,8 @@ void Context::Impl::apply_profile(const std::string& wanted) {
     if (!profile) return;
     vk::apply_limits(*profile, properties.limits);
     if (profile->discrete_memory) {
-        VkPhysicalDeviceMemoryProperties memory{};
-        api->vkGetPhysicalDeviceMemoryProperties(physical, &memory);
-        memory_types.simulate_discrete(memory);
+        const VkPhysicalDeviceMemoryProperties real = memory_types.properties();  // choose_device's, a copy
+        memory_types.simulate_discrete(real);
     }
     if (!profile->device_addresses) device_addresses = false;
     info.device_addresses = device_addresses;
@@ -271,7 +270,6 @@ void Context::Impl::create_device() {
         if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
             queue_family = i;
             timestamp_bits = families[i].timestampValidBits;
-            timestamps = timestamp_bits > 0;
             found = true;
         }
     if (!found) throw Error(ErrorKind::Device, info.name + ": no compute queue");
@@ -297,13 +295,6 @@ void Context::Impl::create_device() {
     if (info.external_memory_fd) extensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     if (info.external_memory_host) extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
     // Heap budgets (Context::memory_heaps), where the device reports them.
-    std::uint32_t available = 0;
-    api->vkEnumerateDeviceExtensionProperties(physical, nullptr, &available, nullptr);
-    std::vector<VkExtensionProperties> offered(available);
-    api->vkEnumerateDeviceExtensionProperties(physical, nullptr, &available, offered.data());
-    memory_budget = std::any_of(offered.begin(), offered.end(), [](const VkExtensionProperties& e) {
-        return std::strcmp(e.extensionName, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME) == 0;
-    });
     if (memory_budget) extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &f2;
@@ -541,10 +532,7 @@ std::vector<MemoryHeap> Context::memory_heaps() const {
         MemoryHeap heap;
         heap.bytes = memory.memoryHeaps[h].size;
         heap.device_local = memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT;
-        for (std::uint32_t t = 0; t < memory.memoryTypeCount; ++t)
-            if (memory.memoryTypes[t].heapIndex == h &&
-                (memory.memoryTypes[t].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT))
-                heap.host_visible = true;
+        heap.host_visible = im.memory_types.host_visible_heap(h);
         heap.vkfuse_bytes = im.memory_types.heap_used(h);
         if (with_budget) {
             heap.budget = budgets.heapBudget[h];

@@ -39,9 +39,9 @@ struct Context::Impl {
     // kMaxKernelBuffers, or fewer where maxPerStageDescriptorStorageBuffers is
     // lower; a kernel with more reaches them through device addresses.
     std::uint32_t bound_buffers = 0;
-    bool memory_budget = false;  // VK_EXT_memory_budget enabled
-    bool timestamps = false;  // queue supports timestamp queries
-    std::uint32_t timestamp_bits = 0;  // the queue's timestampValidBits: the counter wraps at 2^bits
+    bool memory_budget = false;  // VK_EXT_memory_budget offered, and enabled (never on a caller's device)
+    std::uint32_t timestamp_bits = 0;  // the queue's timestampValidBits (0: no timestamp queries); wraps at 2^bits
+    bool timestamps() const { return timestamp_bits > 0; }
     // false on a caller's device (vk/interop.hpp): the instance, device and
     // queue are the caller's, and only vkfuse's own objects are destroyed.
     bool owns_device = true;

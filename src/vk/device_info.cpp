@@ -65,6 +65,7 @@ PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
     for (const auto& x : extensions) {
         if (std::strcmp(x.extensionName, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) == 0) e.info.external_memory_fd = true;
         if (std::strcmp(x.extensionName, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME) == 0) e.info.external_memory_host = true;
+        if (std::strcmp(x.extensionName, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME) == 0) e.memory_budget = true;
     }
     e.info.usable = true;
     return e;

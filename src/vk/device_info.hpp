@@ -12,6 +12,7 @@ struct PhysicalDeviceEntry {
     VkPhysicalDevice handle = VK_NULL_HANDLE;
     DeviceInfo info;
     int rank = 0;  // higher is preferred: discrete > integrated > virtual > cpu
+    bool memory_budget = false;  // VK_EXT_memory_budget (Context::memory_heaps)
 };
 
 std::string version_string(std::uint32_t version);

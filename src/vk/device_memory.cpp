@@ -102,11 +102,10 @@ vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryH
         vk::check(api.vkBindBufferMemory(ctx.device, buffer, memory, 0), (what + ": vkBindBufferMemory").c_str());
         void* mapped = host_pointer;  // imported host memory is seen where it lies
         const bool visible = (memory_props.memoryTypes[mai.memoryTypeIndex].propertyFlags & host) == host;
-        if (visible && !host_pointer)
+        if (visible && !host_pointer) {
             vk::check(api.vkMapMemory(ctx.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped), (what + ": vkMapMemory").c_str());
-        if (mapped == reinterpret_cast<void*>(~std::uintptr_t(0)))  // lavapipe's unbacked memory (vk/buffer.cpp)
-            throw OutOfMemory(what + ": " + std::to_string(allocation) +
-                              " bytes reported allocated that the driver could not back (out of memory)");
+            vk::check_mapping_backed(mapped, allocation, what);
+        }
         *allocated = allocation;
         return vk::Buffer::adopt(ctx, buffer, memory, mai.memoryTypeIndex, allocation, bytes, mapped);
     } catch (...) {

@@ -83,10 +83,14 @@ void MemoryTypes::free(const Api& api, VkDevice device, VkDeviceMemory memory, s
     used_[visible_.memoryTypes[type].heapIndex].fetch_sub(bytes);
 }
 
-std::string MemoryTypes::describe_heap(std::uint32_t heap) const {
-    bool visible = false;
+bool MemoryTypes::host_visible_heap(std::uint32_t heap) const {
     for (std::uint32_t i = 0; i < visible_.memoryTypeCount; ++i)
-        if (visible_.memoryTypes[i].heapIndex == heap && (visible_.memoryTypes[i].propertyFlags & kVisible)) visible = true;
+        if (visible_.memoryTypes[i].heapIndex == heap && (visible_.memoryTypes[i].propertyFlags & kVisible)) return true;
+    return false;
+}
+
+std::string MemoryTypes::describe_heap(std::uint32_t heap) const {
+    const bool visible = host_visible_heap(heap);
     const bool local = visible_.memoryHeaps[heap].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT;
     return std::string(local ? "device-local" : "system") + (local && visible ? " host-visible" : "") + " heap " +
            std::to_string(heap) + " (" + std::to_string(visible_.memoryHeaps[heap].size >> 20) + " MiB)";

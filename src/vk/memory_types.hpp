@@ -42,6 +42,7 @@ public:
 
     VkDeviceSize heap_used(std::uint32_t heap) const { return used_[heap].load(); }
     std::uint32_t heap_of(std::uint32_t type) const { return visible_.memoryTypes[type].heapIndex; }
+    bool host_visible_heap(std::uint32_t heap) const;  // some type in it is HOST_VISIBLE
     // "device-local host-visible heap 2 (256 MiB)"
     std::string describe_heap(std::uint32_t heap) const;
 

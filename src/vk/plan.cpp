@@ -121,7 +121,7 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     const std::size_t partial_bytes =
         !cfg.metrics.empty() ? S * vk::metric_groups(cfg) * vk::kMetricPartialFloats * sizeof(float) : 16;
     readback = vk::Buffer(ctx, partials_offset + partial_bytes, vk::MemoryUse::Readback);
-    if (cfg.profile && !ctx.timestamps)
+    if (cfg.profile && !ctx.timestamps())
         throw Error(ErrorKind::Device, ctx.info.name + ": no timestamp queries for --profile");
     // Should anything here throw, the members built so far release themselves.
     // Room for every block's stages (vk/sensor_blocks.hpp).

@@ -8,7 +8,7 @@
 
 namespace vkfuse::vk {
 
-TimedCommands::TimedCommands(Context::Impl& ctx) : ctx_(ctx), slot_(ctx, ctx.timestamps ? 2 : 0) {}
+TimedCommands::TimedCommands(Context::Impl& ctx) : ctx_(ctx), slot_(ctx, ctx.timestamps() ? 2 : 0) {}
 
 void TimedCommands::record(const std::function<void(VkCommandBuffer)>& body) {
     auto& api = *ctx_.api;
