@@ -87,18 +87,40 @@ void check_scenes(const Value& doc) {
     if (!none_idle) throw std::runtime_error("no row for the scene without contact at the default threshold");
 }
 
+// --pipeline: every row has every field; each method has a round trip row
+// and a row with two cycles in flight, whose results equal the round trip's.
+void check_pipeline(const Value& doc) {
+    if (!doc.is_array() || doc.array().empty()) throw std::runtime_error("top level is not a non-empty array");
+    int round_trips = 0, pipelined = 0;
+    for (std::size_t i = 0; i < doc.array().size(); ++i) {
+        const Value& row = doc.array()[i];
+        for (const char* key : {"method", "levels", "device", "width", "height", "frames", "sensors", "cycles_in_flight",
+                                "median_ms", "throughput_cycles_s", "speedup", "max_abs_diff"})
+            if (!row.find(key)) throw std::runtime_error("row " + std::to_string(i) + " lacks \"" + key + "\"");
+        if (!(row.find("median_ms")->number() > 0) || !(row.find("throughput_cycles_s")->number() > 0))
+            throw std::runtime_error("row " + std::to_string(i) + ": no positive time and throughput");
+        if (row.find("max_abs_diff")->number() != 0)
+            throw std::runtime_error("row " + std::to_string(i) + ": two cycles in flight changed a result");
+        (row.find("cycles_in_flight")->number() == 1 ? round_trips : pipelined) += 1;
+    }
+    if (round_trips == 0 || round_trips != pipelined)
+        throw std::runtime_error("not one round trip row and one pipelined row per method");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: vkfuse-bench-check-json FILE [--min-cells N] [--require-measured BACKEND] [--scenes]\n");
+        std::fprintf(stderr, "usage: vkfuse-bench-check-json FILE [--min-cells N] [--require-measured BACKEND] [--scenes | --pipeline]\n");
         return 2;
     }
     int min_cells = 1;
     std::string backend;
-    bool scenes = false;
-    for (int i = 2; i < argc; ++i)
+    bool scenes = false, pipeline = false;
+    for (int i = 2; i < argc; ++i) {
         if (std::string(argv[i]) == "--scenes") scenes = true;
+        if (std::string(argv[i]) == "--pipeline") pipeline = true;
+    }
     for (int i = 2; i + 1 < argc; i += 2) {
         const std::string opt = argv[i];
         if (opt == "--min-cells") min_cells = std::atoi(argv[i + 1]);
@@ -108,6 +130,8 @@ int main(int argc, char** argv) {
         const Value doc = vkfuse::json::parse(read_file(argv[1]), argv[1]);
         if (scenes)
             check_scenes(doc);
+        else if (pipeline)
+            check_pipeline(doc);
         else
             check(doc, min_cells, backend);
     } catch (const std::exception& e) {

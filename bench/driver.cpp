@@ -12,6 +12,7 @@
 #include "options.hpp"
 #include "peer.hpp"
 #include "report.hpp"
+#include "pipeline.hpp"
 #include "scenes.hpp"
 #include "timing.hpp"
 #include "vk/copy_bandwidth.hpp"
@@ -239,6 +240,7 @@ int run_bench(const Options& o) {
     check_output_dir("--json", o.json_path);
     check_output_dir("--plot", o.plot_path);
     if (o.scenes) return run_scenes(o);
+    if (o.pipeline) return run_pipeline(o);
     const double budget = memory_budget(o.mem_limit_gib);
     const std::vector<Cell> cells = build_matrix(o, budget);
     if (o.list) {

@@ -87,6 +87,18 @@ Measurement:
                     region), tiles_work_fraction (the tile-sparse work model).
                     --json writes the rows, --plot time against error per scene;
                     --runs N: N cycles, rounded up to whole passes over the 24
+  --pipeline        a sensor loop instead of the matrix: S sensors (default 16; the
+                    first --sensors), QVGA (the first --size), K=3 (the first
+                    --frames), 8-bit frames, every fused image and metric read
+                    back, for brovey, laplacian and wavelet/bior4.4 (or --method),
+                    on vulkan: each cycle a round trip (Plan::run) against two
+                    cycles in flight (submit c+1, collect c, read c while c+1
+                    runs), 5 alternating blocks of --runs cycles each; a row per
+                    method and way: method, levels, device, width, height,
+                    frames, sensors, cycles_in_flight, median_ms (per cycle),
+                    throughput_cycles_s, speedup (over the round trip),
+                    max_abs_diff (pipelined results against the round trip's:
+                    0, or exit status 1)
 
 How it measures:
   A cycle is what a sensor loop does: Plan::run on all S*K frames (upload,

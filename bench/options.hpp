@@ -40,6 +40,7 @@ struct Options {
     bool list = false;           // print the cells and exit
     bool probe = false;          // measure the device, print it, run no cell
     bool scenes = false;         // skipping on simulated scenes instead of the matrix (scenes.hpp)
+    bool pipeline = false;       // round trip against two cycles in flight instead of the matrix (pipeline.hpp)
     bool help = false;
 };
 

@@ -1,5 +1,5 @@
 // Recording a rig run and replaying the dataset reproduces the run's fused
-// frames and metrics bit for bit.
+// frames and metrics bit for bit, with one cycle in flight or two.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -45,7 +45,7 @@ Outcome run_cycles(Rig& rig, int cycles, DatasetWriter* recorder, const RigConfi
 
 class VulkanRigReplay : public VulkanTest {};
 
-TEST_F(VulkanRigReplay, ReproducesTheRecordedRunBitForBit) {
+TEST_F(VulkanRigReplay, ReproducesTheRecordedRunBitForBitOneOrTwoCyclesInFlight) {
     TempDir tmp;
     const std::string dir = tmp.file("run");
     constexpr int kCycles = 4;
@@ -69,22 +69,49 @@ TEST_F(VulkanRigReplay, ReproducesTheRecordedRunBitForBit) {
         recorder.finish();
     }
     auto dataset = std::make_shared<const Dataset>(read_dataset(dir));
+    // Replayed as a round trip per cycle, then with two cycles in flight
+    // (the device fuses cycle c + 1 while c is returned): the same results,
+    // in the same order.
+    for (int in_flight : {1, 2}) {
+        SCOPED_TRACE(std::to_string(in_flight) + " cycle(s) in flight");
+        RigConfig cfg = replayable_config();
+        cfg.judging = FrameJudging::Label;
+        cfg.cycles_in_flight = in_flight;
+        std::vector<RigSensor> sensors;
+        for (const DatasetSensorRecord& s : dataset->sensors)
+            sensors.push_back({std::make_shared<DatasetSensor>(dataset, s.info.serial, "coin"), nullptr});
+        Rig replay(&ctx(), cfg, sensors);
+        const Outcome again = run_cycles(replay, kCycles, nullptr, cfg);
+        ASSERT_EQ(again.fused.size(), live.fused.size());
+        for (std::size_t i = 0; i < live.fused.size(); ++i) {
+            ASSERT_TRUE(live.fused[i].same_shape(again.fused[i]));
+            EXPECT_EQ(std::memcmp(live.fused[i].data.data(), again.fused[i].data.data(),
+                                  live.fused[i].size() * sizeof(float)),
+                      0)
+                << "sensor-cycle " << i;
+            EXPECT_EQ(live.metrics[i].sharpness, again.metrics[i].sharpness);
+            EXPECT_EQ(live.metrics[i].contrast, again.metrics[i].contrast);
+            EXPECT_EQ(live.metrics[i].background_diff, again.metrics[i].background_diff);
+        }
+    }
+}
+
+TEST_F(VulkanRigReplay, TwoCyclesInFlightNeedAGpuAndSkipOff) {
     RigConfig cfg = replayable_config();
-    cfg.judging = FrameJudging::Label;
-    std::vector<RigSensor> sensors;
-    for (const DatasetSensorRecord& s : dataset->sensors)
-        sensors.push_back({std::make_shared<DatasetSensor>(dataset, s.info.serial, "coin"), nullptr});
-    Rig replay(&ctx(), cfg, sensors);
-    const Outcome again = run_cycles(replay, kCycles, nullptr, cfg);
-    ASSERT_EQ(again.fused.size(), live.fused.size());
-    for (std::size_t i = 0; i < live.fused.size(); ++i) {
-        ASSERT_TRUE(live.fused[i].same_shape(again.fused[i]));
-        EXPECT_EQ(
-            std::memcmp(live.fused[i].data.data(), again.fused[i].data.data(), live.fused[i].size() * sizeof(float)), 0)
-            << "sensor-cycle " << i;
-        EXPECT_EQ(live.metrics[i].sharpness, again.metrics[i].sharpness);
-        EXPECT_EQ(live.metrics[i].contrast, again.metrics[i].contrast);
-        EXPECT_EQ(live.metrics[i].background_diff, again.metrics[i].background_diff);
+    cfg.cycles_in_flight = 2;
+    const std::vector<RigSensor> sensors{{sim_sensor(1, 0.05).sim, nullptr}};
+    try {
+        Rig rig(nullptr, cfg, sensors);
+        ADD_FAILURE() << "a CPU rig took 2 cycles in flight";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("need a GPU context"), std::string::npos) << e.what();
+    }
+    cfg.skip.policy = SkipPolicy::Idle;
+    try {
+        Rig rig(&ctx(), cfg, sensors);
+        ADD_FAILURE() << "a skipping rig took 2 cycles in flight";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("need skip off"), std::string::npos) << e.what();
     }
 }
 

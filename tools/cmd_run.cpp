@@ -45,6 +45,7 @@ constexpr OptionSpec kOptions[] = {
     {"--background-frames", "", "N", "no-contact frames averaged per setting for the background (default 20; 0: none)"},
     {"--skip", "", "MODE", "off; idle: a sensor whose frames stay within its background noise is not fused; static: also one whose frames match its last fused cycle; tiles: also a changed sensor fuses only its changed tiles and their halo (default tiles)"},
     {"--skip-threshold", "", "K", "a tile changed when a sample lies over K x the tile's noise from the background (default 8)"},
+    {"--cycles-in-flight", "", "N", "1: each cycle is fused and written before the next is fused; 2: the GPU fuses cycle c + 1 while cycle c is written (needs --skip off; the CPU path keeps 1) (default 1)"},
     {"--metrics", "", "LIST", "the metrics computed and written, comma-separated: sharpness, contrast, background_diff (default all three; background_diff needs a background)"},
     {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},
     {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},
@@ -177,6 +178,7 @@ RigConfig rig_config(Session& s) {
     cfg.skip = o.skip;
     cfg.metrics = o.metrics;
     cfg.watch_when_idle = !o.record;  // a dataset holds every setting of every cycle
+    cfg.cycles_in_flight = o.cycles_in_flight;
     // The recorder is made once the rig has accepted the configuration (no
     // directory for a run that cannot start); the callback finds it then.
     if (o.record)
@@ -286,6 +288,11 @@ int run(const Args& args) {
     StopSignal stop;
     Session s = prepare(args);
     std::optional<Context> context = open_backend(s.options.backend);
+    if (!context && s.options.cycles_in_flight != 1) {
+        std::fprintf(stderr, "vkfuse run: --cycles-in-flight %d: the CPU path fuses each cycle as it is taken; 1 cycle in flight\n",
+                     s.options.cycles_in_flight);
+        s.options.cycles_in_flight = 1;
+    }
     Rig rig(context ? &*context : nullptr, rig_config(s), s.sensors.rig);
     open_outputs(s);
     rig.start();

@@ -80,6 +80,13 @@ void background_options(const Args& args, RunOptions& o) {
         o.skip.threshold = parse_positive_number("--skip-threshold", *v);
         if (o.skip.policy == SkipPolicy::Off) fail("--skip-threshold " + *v + ": skipping is off");
     }
+    if (auto v = args.value("--cycles-in-flight")) {
+        o.cycles_in_flight = parse_positive_int("--cycles-in-flight", *v);
+        if (o.cycles_in_flight > 2) fail("--cycles-in-flight " + *v + ": expected 1 or 2");
+        if (o.cycles_in_flight == 2 && o.skip.policy != SkipPolicy::Off)
+            fail("--cycles-in-flight 2: needs --skip off (a skipping plan decides on the host between detection "
+                 "and fusion)");
+    }
     metric_options(args, o);
 }
 

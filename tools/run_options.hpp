@@ -52,6 +52,7 @@ struct RunOptions {
     SkipConfig skip;
     // --metrics: all three unless told; background_diff only with a background.
     MetricSet metrics = MetricSet::all();
+    int cycles_in_flight = 1;     // --cycles-in-flight (RigConfig::cycles_in_flight)
     std::optional<int> pressing;  // simulated DIGITs: how many press the object (the first N), default all
     double timeout_s = kLiveTimeoutSeconds;
 };
@@ -64,7 +65,7 @@ inline constexpr int kMaxSimulatedSensors = int(kMaxRigSensors);
 // DIGIT's LEDs, the object against the simulator's). Throws Error naming the option.
 RunOptions parse_run_options(const Args& args);
 // What depends on the background (o.background_frames, known by now):
-// --skip, --skip-threshold and --metrics into o.
+// --skip, --skip-threshold, --cycles-in-flight and --metrics into o.
 void background_options(const Args& args, RunOptions& o);
 
 // With --replay: the recorded sequence, fusion and background count wherever

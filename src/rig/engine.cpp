@@ -21,6 +21,9 @@ public:
     void set_skip_reference(int sensor, const SkipReference& r) override { plan_.set_skip_reference(sensor, r); }
     SkipOutcome skip_outcome(int sensor) override { return plan_.skip_outcome(sensor); }
     void run(std::span<const FrameView> frames) override { plan_.run(frames); }
+    void submit(std::span<const FrameView> frames) override { plan_.submit(frames); }
+    void collect() override { plan_.collect(); }
+    int cycles_in_flight() const override { return plan_.config().cycles_in_flight; }
     const Image& fused(int sensor) override { return plan_.fused(sensor); }
     Metrics metrics(int sensor) override { return plan_.metrics(sensor); }
     std::uint64_t submits() const override { return plan_.submits(); }
@@ -66,6 +69,9 @@ public:
             run_sensor(s, frames.subspan(s * std::size_t(cfg_.frames), std::size_t(cfg_.frames)));
         ++runs_;
     }
+    void submit(std::span<const FrameView> frames) override { run(frames); }
+    void collect() override {}
+    int cycles_in_flight() const override { return 1; }
     const Image& fused(int sensor) override { return fused_.at(std::size_t(sensor)); }
     Metrics metrics(int sensor) override { return metrics_.at(std::size_t(sensor)); }
     std::uint64_t submits() const override { return runs_; }

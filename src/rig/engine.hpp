@@ -19,8 +19,12 @@ public:
     // engine computes that metric).
     virtual void set_background(int sensor, const Image& background) = 0;
     virtual void set_skip_reference(int sensor, const SkipReference& reference) = 0;
-    // frames sensor-major, as Plan::run.
+    // frames sensor-major, as Plan::run; submit() and collect() as Plan's
+    // (the CPU path fuses in submit(), and keeps 1 cycle in flight).
     virtual void run(std::span<const FrameView> frames) = 0;
+    virtual void submit(std::span<const FrameView> frames) = 0;
+    virtual void collect() = 0;
+    virtual int cycles_in_flight() const = 0;
     virtual const Image& fused(int sensor) = 0;
     virtual Metrics metrics(int sensor) = 0;
     virtual SkipOutcome skip_outcome(int sensor) = 0;

@@ -24,7 +24,7 @@ WallClock::time_point after(double seconds) {
 
 double seconds_since(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }
 
-void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors) {
+void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors, const Context* context) {
     if (sensors.empty()) throw Error(ErrorKind::InvalidArgument, "rig: no sensors");
     if (sensors.size() > kMaxRigSensors)
         throw Error(ErrorKind::InvalidArgument, "rig: " + std::to_string(sensors.size()) + " sensors; at most " +
@@ -42,6 +42,15 @@ void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors) {
                                                     " needs at least 2 background frames per setting");
     for (const RigSensor& s : sensors)
         if (!s.sensor) throw Error(ErrorKind::InvalidArgument, "rig: null sensor");
+    if (cfg.cycles_in_flight != 1 && cfg.cycles_in_flight != 2)
+        throw Error(ErrorKind::InvalidArgument, "rig: cycles_in_flight must be 1 or 2, got " +
+                                                    std::to_string(cfg.cycles_in_flight));
+    if (cfg.cycles_in_flight == 2 && !context)
+        throw Error(ErrorKind::InvalidArgument, "rig: 2 cycles in flight need a GPU context (the CPU path fuses "
+                                                "each cycle as it is taken)");
+    if (cfg.cycles_in_flight == 2 && cfg.skip.policy != SkipPolicy::Off)
+        throw Error(ErrorKind::InvalidArgument, "rig: 2 cycles in flight need skip off (a skipping plan decides "
+                                                "on the host between detection and fusion)");
 }
 
 // Replayed frames recorded for a later cycle than the one being assembled:
@@ -75,13 +84,18 @@ struct Rig::Impl {
     std::vector<const Image*> idle_image;
     std::uint64_t cycle = 0;
     bool started = false;
+    // Two cycles in flight: the cycle submitted and not yet returned.
+    std::optional<CycleResult> ahead;
 
     Impl(Context* c, RigConfig config, std::vector<RigSensor> s);
     PlanConfig plan_config(PixelType input, bool metrics) const;
     bool cycle_ready() const;  // call with hub->mutex held
     void await_startup();
     void take_cycle(CycleResult& result);
-    void fuse(CycleResult& result);
+    // The next cycle taken from the sensors and submitted to the engine.
+    CycleResult start_cycle();
+    // Each sensor's results of the cycle the engine collected last.
+    void report(CycleResult& result);
     void apply_new_backgrounds();
     void stop_threads();
     std::vector<FrameView> views_for(const std::vector<SensorCycle>& sensors) const;
@@ -89,7 +103,7 @@ struct Rig::Impl {
 
 Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
     : context(c), cfg(std::make_shared<const RigConfig>(std::move(config))), sensors(std::move(s)) {
-    check_config(*cfg, sensors);
+    check_config(*cfg, sensors, context);
     hub->context = context;
     hub->slots.resize(sensors.size());
     for (std::size_t i = 0; i < sensors.size(); ++i) {
@@ -138,6 +152,7 @@ PlanConfig Rig::Impl::plan_config(PixelType input, bool metrics) const {
                                             cfg->metrics.has(Metric::BackgroundDiff) && cfg->background_frames > 0)
                         : MetricSet{};
     if (metrics) p.skip = cfg->skip;  // the background means themselves are always fused
+    if (metrics) p.cycles_in_flight = cfg->cycles_in_flight;
     return p;
 }
 
@@ -312,13 +327,26 @@ void Rig::Impl::take_cycle(CycleResult& result) {
     hub->changed.notify_all();  // mailboxes are free again
 }
 
-void Rig::Impl::fuse(CycleResult& result) {
+CycleResult Rig::Impl::start_cycle() {
+    CycleResult result;
+    result.cycle = cycle++;
+    result.sensors.resize(sensors.size());
+    const auto wait_start = WallClock::now();
+    take_cycle(result);
+    result.capture_wait_s = seconds_since(wait_start);
+    apply_new_backgrounds();
+    const auto fuse_start = WallClock::now();
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         const bool ok = result.sensors[i].status == SensorStatus::Ok;
         if (ok) last_good[i] = result.sensors[i].frames;
         lagging[i] = !ok && !replayed[i];
     }
-    engine->run(views_for(result.sensors));
+    engine->submit(views_for(result.sensors));
+    result.fuse_s = seconds_since(fuse_start);
+    return result;
+}
+
+void Rig::Impl::report(CycleResult& result) {
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         SensorCycle& r = result.sensors[i];
         if (r.status != SensorStatus::Ok) continue;
@@ -348,19 +376,19 @@ void Rig::Impl::fuse(CycleResult& result) {
     hub->changed.notify_all();
 }
 
+// One round trip: take cycle c, fuse it, return it. Two cycles in flight:
+// cycle c was submitted by the call before; take and submit c + 1, then
+// collect c, so the device fuses c + 1 while the caller handles c.
 CycleResult Rig::next() {
     auto& im = *impl_;
     if (!im.started) throw Error(ErrorKind::InvalidArgument, "rig: next() before start()");
-    CycleResult result;
-    result.cycle = im.cycle++;
-    result.sensors.resize(im.sensors.size());
-    const auto wait_start = WallClock::now();
-    im.take_cycle(result);
-    result.capture_wait_s = seconds_since(wait_start);
-    im.apply_new_backgrounds();
-    const auto fuse_start = WallClock::now();
-    im.fuse(result);
-    result.fuse_s = seconds_since(fuse_start);
+    if (im.engine->cycles_in_flight() > 1 && !im.ahead) im.ahead = im.start_cycle();
+    CycleResult result = im.ahead ? std::move(*im.ahead) : im.start_cycle();
+    if (im.ahead) im.ahead = im.start_cycle();
+    const auto collect_start = WallClock::now();
+    im.engine->collect();
+    result.fuse_s += seconds_since(collect_start);
+    im.report(result);
     return result;
 }
 

@@ -27,6 +27,13 @@ void validate_config(const PlanConfig& c, vk::PlanKind kind) {
                                                         std::to_string(c.frames));
     }
     if (c.sensors < 1) throw Error(ErrorKind::InvalidArgument, "plan: sensors must be >= 1");
+    if (c.cycles_in_flight != 1 && c.cycles_in_flight != 2)
+        throw Error(ErrorKind::InvalidArgument, "plan: cycles_in_flight must be 1 or 2, got " +
+                                                    std::to_string(c.cycles_in_flight));
+    if (c.cycles_in_flight != 1 && c.skip.policy != SkipPolicy::Off)
+        throw Error(ErrorKind::InvalidArgument, "plan: a skipping plan decides on the host between its change "
+                                                "detection and its fusion, so it keeps 1 cycle in flight, not " +
+                                                    std::to_string(c.cycles_in_flight));
     if (c.skip.policy != SkipPolicy::Off) {
         if (kind != vk::PlanKind::Fuse || c.input != PixelType::U8)
             throw Error(ErrorKind::InvalidArgument, "plan: skip " + std::string(to_string(c.skip.policy)) +
@@ -62,8 +69,8 @@ PerSensorBuffers per_sensor_buffers(const Plan::Impl& p) {
     const vk::DeviceSpan image = !c.want_fused             ? vk::DeviceSpan{}
                                  : p.device_fused.handle() ? p.device_fused.span()
                                                            : p.readback.span().sub(0, p.partials_offset);
-    const vk::DeviceSpan frames = p.device_frames.handle()   ? p.device_frames.span()
-                                  : p.staged_frames.handle() ? p.staged_frames.span()
+    const vk::DeviceSpan frames = p.staged_frames.handle()   ? p.staged_frames.span()
+                                  : p.device_frames.handle() ? p.device_frames.span()
                                                              : p.upload.span();
     return {{frames,
              samples * pixel_bytes(c.input) * std::uint64_t(c.frames)},
@@ -92,6 +99,9 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     : ctx(context), cfg(config), kind(plan_kind), embedded(io != nullptr) {
     validate_config(cfg, kind);
     check_precision(cfg, ctx.info);
+    if (io && cfg.cycles_in_flight != 1)
+        throw Error(ErrorKind::InvalidArgument, "make_plan: a plan in the caller's command buffers keeps 1 cycle "
+                                                "in flight (the caller pipelines its own submissions)");
     if (io) borrow_buffers(*io);
     const std::size_t frame_bytes = std::size_t(cfg.height) * cfg.width * cfg.channels * pixel_bytes(cfg.input);
     const std::size_t plane_floats = std::size_t(cfg.height) * cfg.width;
@@ -101,6 +111,10 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
     if (upload.handle() && !upload.device_local() && ctx.memory_types.has_device_local()) {
         staged_frames = vk::Buffer(ctx, upload.size(), vk::MemoryUse::Device);
         ctx.adapted("frames uploaded to system memory are copied into device-local memory before each cycle");
+    }
+    if (device_frames.handle() && ctx.in_system_memory(device_frames.handle())) {
+        staged_frames = vk::Buffer(ctx, (device_frames.size() + 3) / 4 * 4, vk::MemoryUse::Device);
+        ctx.adapted("frames in imported host memory are copied into device-local memory before each cycle");
     }
     if (cfg.metrics.has(Metric::BackgroundDiff)) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
     const std::size_t S = std::size_t(cfg.sensors);
@@ -166,11 +180,15 @@ void Plan::Impl::record() {
     vk::Recorder rec(ctx, slot->recording_target(), slot->queries(), kernel_variant(cfg.precision), *sets, addressed,
                      embedded, slot->query_count());
     if (staged_frames.handle()) {
+        // From the upload buffer (host-written), or from the caller's frames
+        // in imported host memory (host-written, or by the caller's commands).
         const VkCommandBuffer cmd = slot->recording_target();
-        vk::memory_barrier(*ctx.api, cmd, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_WRITE_BIT,
-                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-        const VkBufferCopy all{0, 0, upload.size()};
-        ctx.api->vkCmdCopyBuffer(cmd, upload.handle(), staged_frames.handle(), 1, &all);
+        const vk::DeviceSpan from = device_frames.handle() ? device_frames.span() : upload.span();
+        vk::memory_barrier(*ctx.api, cmd, VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                           VK_ACCESS_HOST_WRITE_BIT | VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_TRANSFER_READ_BIT);
+        const VkBufferCopy all{from.offset, 0, from.bytes};
+        ctx.api->vkCmdCopyBuffer(cmd, from.buffer, staged_frames.handle(), 1, &all);
         vk::memory_barrier(*ctx.api, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     }
@@ -248,6 +266,12 @@ void Plan::Impl::submit_and_wait() {
     slot->wait();
 }
 
+void Plan::Impl::wait_device() {
+    if (!submitted) return;
+    slot->wait();
+    submitted = false;
+}
+
 namespace {
 
 void check_view(const FrameView& v, const PlanConfig& c, const std::string& what, bool any_type = false) {
@@ -281,11 +305,17 @@ std::string number(double v) {
 }  // namespace
 
 Plan::Plan(Context& context, const PlanConfig& config)
-    : impl_(std::make_unique<Impl>(vk::ContextAccess::of(context), config,
-                                   config.fuse ? vk::PlanKind::Fuse : vk::PlanKind::Score)) {}
+    : impl_(Impl::with_lanes(vk::ContextAccess::of(context), config,
+                             config.fuse ? vk::PlanKind::Fuse : vk::PlanKind::Score)) {}
 Plan::Plan(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Plan Plan::Impl::make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind) {
-    return Plan(std::make_unique<Impl>(vk::ContextAccess::of(context), config, plan_kind));
+    return Plan(with_lanes(vk::ContextAccess::of(context), config, plan_kind));
+}
+std::unique_ptr<Plan::Impl> Plan::Impl::with_lanes(Context::Impl& context, const PlanConfig& config,
+                                                   vk::PlanKind plan_kind) {
+    auto first = std::make_unique<Impl>(context, config, plan_kind);
+    if (config.cycles_in_flight == 2) first->second_lane = std::make_unique<Impl>(context, config, plan_kind);
+    return first;
 }
 Plan::~Plan() = default;
 Plan::Plan(Plan&&) noexcept = default;
@@ -293,14 +323,24 @@ Plan& Plan::operator=(Plan&&) noexcept = default;
 const PlanConfig& Plan::config() const { return impl_->cfg; }
 
 void Plan::set_background(int sensor, const FrameView& bg) {
-    auto& im = *impl_;
-    if (!im.cfg.metrics.has(Metric::BackgroundDiff))
+    auto& p = *impl_;
+    if (!p.cfg.metrics.has(Metric::BackgroundDiff))
         throw Error(ErrorKind::InvalidArgument, "plan: created without the background_diff metric");
-    if (sensor < 0 || sensor >= im.cfg.sensors)
+    if (sensor < 0 || sensor >= p.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "background: sensor " + std::to_string(sensor) + " out of range");
+    check_view(bg, p.cfg, "background of sensor " + std::to_string(sensor), true);
+    p.finish_pending();  // a submitted cycle may still read the device copy
+    // Cycles in flight were submitted with the old background: each lane's
+    // device copy changes once its cycle is done (it stays to be collected).
+    for (Impl* lane : p.lanes()) {
+        lane->wait_device();
+        lane->set_background(sensor, bg);
+    }
+}
+
+void Plan::Impl::set_background(int sensor, const FrameView& bg) {
+    auto& im = *this;
     const std::string name = "background of sensor " + std::to_string(sensor);
-    check_view(bg, im.cfg, name, true);
-    im.finish_pending();  // a submitted cycle may still read the device copy
     const std::size_t pixels = std::size_t(bg.height) * bg.width, C = std::size_t(bg.channels);
     if (bg.type == PixelType::F32) {
         const std::uint32_t largest = vk::max_abs(bg.data, pixels * C);
@@ -340,7 +380,7 @@ void Plan::set_background(int sensor, const FrameView& bg) {
 }
 
 void Plan::set_skip_reference(int sensor, const SkipReference& reference) {
-    auto& im = *impl_;
+    auto& im = *impl_;  // a skipping plan has one lane
     if (!im.skip) throw Error(ErrorKind::InvalidArgument, "plan: created with skip off");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "skip reference: sensor " + std::to_string(sensor) + " out of range");
@@ -352,8 +392,7 @@ SkipOutcome Plan::skip_outcome(int sensor) const {
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
     if (!im.skip) return {};
-    if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: skip_outcome() before run()");
-    return im.skip->outcome(sensor);
+    return im.readable("skip_outcome()").skip->outcome(sensor);
 }
 
 namespace {
@@ -466,8 +505,18 @@ void Plan::Impl::prepare_device_frames() {
 
 void Plan::Impl::complete() {
     readback.invalidate();  // what the cycle wrote, visible where read-back memory is not coherent
-    has_run = true;
+    collected = true;
     std::fill(fused_fresh.begin(), fused_fresh.end(), false);
+}
+
+Plan::Impl& Plan::Impl::readable(const char* call) const {
+    if (!collected) {
+        throw Error(ErrorKind::InvalidArgument, std::string("plan: ") + call +
+                                                    (in_flight.empty() ? " before run()"
+                                                                       : " after submit(); collect() its cycle first"));
+    }
+    check_not_pending(call);
+    return *results;
 }
 
 void Plan::Impl::check_not_pending(const char* call) const {
@@ -483,42 +532,13 @@ void Plan::Impl::finish_pending() {
     complete();
 }
 
-void Plan::run(std::span<const FrameView> frames) {
-    auto& im = *impl_;
-    const auto& c = im.cfg;
-    im.finish_pending();  // the upload buffer may still be read by an asynchronous submit
-    if (im.device_frames.handle() && frames.empty()) {
-        im.check_ready();
-        im.prepare_device_frames();
-    } else {
-        im.upload_frames(frames);
-    }
-    if (im.skip) {
-        // SkipPolicy::Static: the results of the sensors the last run fused
-        // are kept before this run overwrites them.
-        if (im.skip->statics())
-            for (int s = 0; s < c.sensors; ++s)
-                if (im.skip->result_pending(s))
-                    im.skip->keep_result(s, c.want_fused ? &fused(s) : nullptr, !c.metrics.empty() ? metrics(s) : Metrics{});
-        const std::vector<int> fused_sensors = im.skip->detect();
-        im.skip->keep_frames(frames, fused_sensors);
-        im.compact(frames, fused_sensors);
-        im.fused_last_run = !fused_sensors.empty();
-    } else {
-        im.fused_last_run = true;
-    }
-    if (im.fused_last_run) im.submit_and_wait();
-    im.complete();
-}
-
 const Image& Plan::fused(int sensor) const {
-    auto& im = *impl_;
-    if (!im.cfg.want_fused) throw Error(ErrorKind::InvalidArgument, "plan: created without want_fused");
-    if (im.device_fused.handle())
+    if (!impl_->cfg.want_fused) throw Error(ErrorKind::InvalidArgument, "plan: created without want_fused");
+    if (impl_->device_fused.handle())
         throw Error(ErrorKind::InvalidArgument, "plan: the fused image is written to the caller's buffer "
                                                 "(PlanBuffers::fused), not read back");
-    if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: fused() before run()");
-    im.check_not_pending("fused()");
+    // The cache of images read back is the lane's own.
+    Impl& im = impl_->readable("fused()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
     if (im.skipped(sensor)) return im.skip->skipped_image(sensor);
@@ -545,10 +565,8 @@ const Image& Plan::fused(int sensor) const {
 }
 
 Metrics Plan::metrics(int sensor) const {
-    auto& im = *impl_;
-    if (im.cfg.metrics.empty()) throw Error(ErrorKind::InvalidArgument, "plan: created without metrics");
-    if (!im.has_run) throw Error(ErrorKind::InvalidArgument, "plan: metrics() before run()");
-    im.check_not_pending("metrics()");
+    if (impl_->cfg.metrics.empty()) throw Error(ErrorKind::InvalidArgument, "plan: created without metrics");
+    Impl& im = impl_->readable("metrics()");
     if (sensor < 0 || sensor >= im.cfg.sensors)
         throw Error(ErrorKind::InvalidArgument, "plan: sensor " + std::to_string(sensor) + " out of range");
     if (im.skipped(sensor)) {
@@ -564,12 +582,15 @@ Metrics Plan::metrics(int sensor) const {
                               "sensor " + std::to_string(sensor));
 }
 
-std::uint64_t Plan::submits() const { return impl_->submits; }
+std::uint64_t Plan::submits() const {
+    return impl_->submits + (impl_->second_lane ? impl_->second_lane->submits : 0);
+}
 
 std::vector<KernelTime> Plan::profile() const {
-    auto& im = *impl_;
-    if (!im.cfg.profile) throw Error(ErrorKind::InvalidArgument, "plan: created without profile");
-    if (!im.has_run || !im.fused_last_run) return {};
+    if (!impl_->cfg.profile) throw Error(ErrorKind::InvalidArgument, "plan: created without profile");
+    if (!impl_->collected) return {};
+    Impl& im = impl_->readable("profile()");
+    if (!im.fused_last_run) return {};
     const std::uint32_t n = std::uint32_t(im.stage_names.size()) + 1;
     const std::vector<std::uint64_t> ticks = im.slot->timestamps(n);
     std::vector<KernelTime> out;

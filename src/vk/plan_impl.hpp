@@ -1,6 +1,8 @@
 // Plan::Impl and the pieces the per-method graph builders share.
 #pragma once
 #include <cstdint>
+#include <deque>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -221,14 +223,23 @@ struct Plan::Impl {
     // Skipping plans with background_diff: the sensor whose background the
     // device copy holds in each slot (-1: none, or changed since).
     std::vector<int> background_in_slot;
-    bool fused_last_run = false;  // the last run() submitted the fusion command buffer
+    bool fused_last_run = false;  // the last cycle submitted the fusion command buffer
+    bool submitted = false;       // Plan::submit submitted it, and its fence is not yet waited for
     // After the buffers, so it is released (and a pending submit waited out) first.
     std::optional<vk::CommandSlot> slot;
     std::vector<std::string> stage_names;
     std::size_t partials_offset = 0;  // bytes into readback
     std::vector<bool> background_set;
-    bool has_run = false;
     std::uint64_t submits = 0;
+    // PlanConfig::cycles_in_flight 2: the second lane, a plan of the same
+    // configuration with buffers and a command buffer of its own; cycles
+    // alternate between the two. Null in a one-lane plan and in the second
+    // lane itself. The pipeline's state below is kept in the first lane.
+    std::unique_ptr<Impl> second_lane;
+    std::deque<Impl*> in_flight;  // lanes submitted and not collected, oldest first
+    Impl* next_lane = this;       // the lane the next submit takes
+    Impl* results = this;         // the lane whose results fused(), metrics(), ... read
+    bool collected = false;       // a cycle was collected and no submit came since
     std::vector<Image> fused;  // filled lazily from readback after a run
     std::vector<bool> fused_fresh;
     // Magnitudes (vk/magnitude.hpp). Float32 frames of sensor s went to the
@@ -247,6 +258,19 @@ struct Plan::Impl {
     // A plan of an internal kind (BackgroundMean): what Plan's public
     // constructor cannot make.
     static Plan make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind);
+    // The first lane of a plan, with its second lane where
+    // config.cycles_in_flight asks for one.
+    static std::unique_ptr<Impl> with_lanes(Context::Impl& context, const PlanConfig& config, vk::PlanKind plan_kind);
+    // This lane and the second, where there is one.
+    std::vector<Impl*> lanes() { return second_lane ? std::vector<Impl*>{this, second_lane.get()} : std::vector<Impl*>{this}; }
+    // The lane whose results call (e.g. "fused()") reads: refused before any
+    // cycle was collected, and after a submit() since.
+    Impl& readable(const char* call) const;
+    // Waits for the device to finish the cycle submitted in this lane (the
+    // cycle stays to be collected): before the host rewrites what it reads.
+    void wait_device();
+    // Plan::set_background on this lane (checked by the caller).
+    void set_background(int sensor, const FrameView& background);
     bool brovey() const { return kind == vk::PlanKind::Fuse && cfg.fusion.method == Method::Brovey; }
     // Where sensor's results lie in the read-back buffer: its slot in the last run.
     std::size_t result_slot(int sensor) const { return skip ? std::size_t(*skip->slot(sensor)) : std::size_t(sensor); }

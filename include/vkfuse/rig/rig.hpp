@@ -61,6 +61,12 @@ struct RigConfig {
     // Off for a run whose frames are recorded, so that every cycle of the
     // dataset holds every setting.
     bool watch_when_idle = true;
+    // 2: the rig submits cycle c + 1 to the device before it returns cycle c
+    // (PlanConfig::cycles_in_flight), so the device fuses c + 1 while the
+    // caller handles c; each result then comes one cycle's capture later.
+    // Needs a GPU context and skip off (a skipping plan decides on the host
+    // between detection and fusion). 1: each next() is one round trip.
+    int cycles_in_flight = 1;
 
     // Called on a sensor's capture thread with each setting's background
     // frames (e.g. to record them), then once when its background is done
@@ -100,7 +106,7 @@ struct CycleResult {
     std::uint64_t cycle = 0;  // from 0
     std::vector<SensorCycle> sensors;
     double capture_wait_s = 0;  // wall time spent waiting for the sensors' frames
-    double fuse_s = 0;          // wall time of the one submit (or the CPU fusion)
+    double fuse_s = 0;          // wall time of the one submit and its wait (or the CPU fusion)
 };
 
 // Every sensor has its own capture thread that calibrates it (FrameJudging::

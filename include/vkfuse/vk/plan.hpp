@@ -53,6 +53,12 @@ struct PlanConfig {
     // "Skipping"): needs fuse and 8-bit frames, and a reference per sensor
     // (Plan::set_skip_reference) before run().
     SkipConfig skip = {};
+    // Cycles the plan can have on the device at once: 1 or 2. With 2 the plan
+    // holds two sets of per-cycle buffers and command buffers (twice the
+    // device memory), so the upload and read-back of one cycle overlap the
+    // device's work on the other (Plan::submit). A skipping plan decides on
+    // the host between its change detection and its fusion: it takes 1.
+    int cycles_in_flight = 1;
 };
 
 // Time one kernel (or a group of dispatches) took on the device in the last run.
@@ -62,12 +68,13 @@ struct KernelTime {
 };
 
 // Everything for one (method, shape, K, S, metrics) is created here once:
-// pipelines, device buffers and one command buffer recorded at construction.
-// run() copies the frames into the upload buffer, submits that command buffer
-// once, waits, and exposes what was asked for. A Plan is used by one thread at
-// a time; plans of one Context may run on different threads at once. The
-// Context must outlive its plans. Throws Error on invalid configuration or
-// device failure.
+// pipelines, device buffers and one command buffer recorded at construction
+// (one per cycle in flight). run() copies the frames into the upload buffer,
+// submits that command buffer once, waits, and exposes what was asked for;
+// submit() and collect() split that round trip so that two cycles overlap. A
+// Plan is used by one thread at a time; plans of one Context may run on
+// different threads at once. The Context must outlive its plans. Throws Error
+// on invalid configuration or device failure.
 class Plan {
 public:
     Plan(Context& context, const PlanConfig& config);
@@ -104,6 +111,21 @@ public:
     // PlanBuffers::frames) takes an empty span.
     void run(std::span<const FrameView> frames);
 
+    // A pipelined cycle: submit() checks and uploads the frames (as run())
+    // and starts their cycle on the device without waiting for it; collect()
+    // waits for the oldest cycle submitted and not yet collected, and
+    // fused(), metrics(), skip_outcome() and profile() then read its results
+    // until the next submit(). With config().cycles_in_flight 2 a sensor loop
+    // submits cycle c + 1, collects cycle c and reads it while c + 1 runs.
+    // At most cycles_in_flight cycles are submitted and not collected:
+    // submit() beyond that, collect() with none, or a result read after a
+    // submit() throws Error(InvalidArgument). run() collects every cycle
+    // still in flight first (their results are dropped). A skipping plan's
+    // submit() runs its whole cycle (detection, the host's decision, fusion).
+    void submit(std::span<const FrameView> frames);
+    void collect();
+    int in_flight() const;  // cycles submitted and not collected
+
     // Results of the last run(). Error(Numeric) where a fused value lies
     // beyond float32's range (the reference cannot store it either) or the
     // device computed a non-finite value: never Inf, NaN or a wrong number.
@@ -113,8 +135,8 @@ public:
     // order, every sensor's work in it (empty before a fusing run).
     std::vector<KernelTime> profile() const;
     SkipOutcome skip_outcome(int sensor) const;  // idle false, fractions 1 when skip is off
-    // Fusion command buffers submitted so far: one per run(), whatever the
-    // sensor count. A skipping plan submits its change detection first in
+    // Fusion command buffers submitted so far: one per run() or submit(),
+    // whatever the sensor count. A skipping plan submits its change detection first in
     // every run, and the fusion only when some sensor changed: runs in which
     // every sensor was idle add none.
     std::uint64_t submits() const;
