@@ -100,8 +100,8 @@ struct Expected {
     std::vector<Metrics> metrics;
 };
 
-Expected ordinary(const PlanConfig& c, const std::vector<std::uint8_t>& bytes) {
-    Plan plan(shared_context(), c);
+Expected ordinary(const PlanConfig& c, const std::vector<std::uint8_t>& bytes, Context& ctx = shared_context()) {
+    Plan plan(ctx, c);
     plan.run(views_of(c, bytes));
     Expected e;
     for (int s = 0; s < c.sensors; ++s) {
@@ -401,6 +401,36 @@ TEST_F(Interop, HostMemoryIsReadInPlaceWithNoStagingCopy) {
     }
     expect_error([&] { DeviceMemory::import_host(ctx, static_cast<std::uint8_t*>(host.get()) + 1, align); },
                  "import_host", ErrorKind::InvalidArgument, "multiples of " + std::to_string(align));
+    for (const std::string& what : ctx.adaptations()) EXPECT_EQ(what.find("imported host memory"), std::string::npos) << what;
+}
+
+// On a discrete GPU imported host memory is system memory: a plan reading its
+// frames there copies them into device-local memory at the start of each
+// cycle, rather than have every kernel read them across the bus.
+TEST_F(Interop, HostMemoryOnADiscreteGpuIsCopiedIntoDeviceMemoryEachCycle) {
+    if (!shared_context().device().external_memory_host) GTEST_SKIP() << "no VK_EXT_external_memory_host";
+    ContextOptions o = validated_options();
+    o.device_profile = "discrete-no-rebar";
+    Context ctx(o);
+    const VkDeviceSize align = DeviceMemory::host_pointer_alignment(ctx);
+    const PlanConfig c = config_of(Method::Wavelet, PixelType::U8);
+    const std::vector<std::uint8_t> first = frame_bytes(c, 80), second = frame_bytes(c, 90);
+    const std::size_t bytes = (first.size() + align - 1) / align * align;
+    std::unique_ptr<void, FreeAligned> host(std::aligned_alloc(align, bytes));
+    DeviceMemory imported = DeviceMemory::import_host(ctx, host.get(), bytes);
+    Plan plan = make_plan(ctx, c, {imported.range(), {}});
+    bool said = false;
+    for (const std::string& what : ctx.adaptations())
+        said = said || what == "frames in imported host memory are copied into device-local memory before each cycle";
+    EXPECT_TRUE(said);
+    for (const auto* frames : {&first, &second}) {
+        std::memcpy(host.get(), frames->data(), frames->size());
+        plan.run({});
+        std::vector<float> fused;
+        for (int s = 0; s < kS; ++s) fused.insert(fused.end(), plan.fused(s).data.begin(), plan.fused(s).data.end());
+        expect_same(ordinary(c, *frames, ctx), fused.data(), plan, "staged host memory");
+    }
+    EXPECT_EQ(ctx.validation_message_count(), 0u);
 }
 
 }  // namespace

@@ -20,7 +20,8 @@ constexpr CommandSpec kSpec{
     "and the device --backend auto picks, with the filter arithmetic it uses and\n"
     "what vkfuse adapted to fit it. Then the simulated device profiles, which\n"
     "VKFUSE_DEVICE_PROFILE=NAME applies to any command (the device seen with the\n"
-    "limits and memory of that GPU class).\n"
+    "limits and memory of that GPU class). VKFUSE_PIPELINE_CACHE=FILE keeps the\n"
+    "compiled kernels in FILE across runs (for drivers without a cache of their own).\n"
     "Without a Vulkan loader or device it says so: the CPU reference path is used.",
     {},
     "vkfuse info",
@@ -50,6 +51,8 @@ void print_auto_choice() {
                     to_string(context.filter_arithmetic()).data());
         context.splits_products();  // asks the device about fma now, so that its answer is listed
         for (const std::string& what : context.adaptations()) std::printf("  adapted: %s\n", what.c_str());
+        if (const std::string cache = context.pipeline_cache(); !cache.empty())
+            std::printf("  pipeline cache: %s\n", cache.c_str());
         const auto mib = [](std::uint64_t bytes) { return static_cast<unsigned long long>(bytes >> 20); };
         const std::vector<MemoryHeap> heaps = context.memory_heaps();
         for (std::size_t h = 0; h < heaps.size(); ++h) {

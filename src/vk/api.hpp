@@ -52,6 +52,9 @@ namespace vkfuse::vk {
     X(vkCreatePipelineLayout)             \
     X(vkDestroyPipelineLayout)            \
     X(vkCreateComputePipelines)           \
+    X(vkCreatePipelineCache)              \
+    X(vkDestroyPipelineCache)             \
+    X(vkGetPipelineCacheData)             \
     X(vkDestroyPipeline)                  \
     X(vkCreateCommandPool)                \
     X(vkDestroyCommandPool)               \

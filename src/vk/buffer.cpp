@@ -28,19 +28,17 @@ constexpr VkMemoryPropertyFlags kCoherent = VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
 // The memory types a buffer of `use` may take, best first (MemoryUse says
 // which): every type with the first preference's flags, then the next's.
 std::vector<std::uint32_t> candidate_types(const Context::Impl& ctx, std::uint32_t type_bits, MemoryUse use) {
-    std::vector<VkMemoryPropertyFlags> preferences;
-    switch (use) {
-        case MemoryUse::Device: preferences = {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0}; break;
-        case MemoryUse::Upload: preferences = {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | kVisible | kCoherent, kVisible | kCoherent}; break;
-        case MemoryUse::Readback: preferences = {kVisible | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, kVisible}; break;
-    }
-    const auto& memory = ctx.memory_types.properties();
     std::vector<std::uint32_t> types;
-    for (VkMemoryPropertyFlags wanted : preferences)
-        for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
-            if ((type_bits >> i & 1u) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted &&
-                std::find(types.begin(), types.end(), i) == types.end())
-                types.push_back(i);
+    switch (use) {
+        case MemoryUse::Device: types = ctx.memory_types.ranked(type_bits, {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0}); break;
+        case MemoryUse::Upload:
+            types = ctx.memory_types.ranked(type_bits, {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | kVisible | kCoherent,
+                                                        kVisible | kCoherent});
+            break;
+        case MemoryUse::Readback:
+            types = ctx.memory_types.ranked(type_bits, {kVisible | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, kVisible});
+            break;
+    }
     if (types.empty()) throw Error(ErrorKind::Device, ctx.info.name + ": no suitable memory type");
     return types;
 }

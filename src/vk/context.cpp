@@ -79,6 +79,7 @@ Context::Impl::Impl(const ContextOptions& options)
         choose_filter_arithmetic(options.filter_arithmetic);
         create_device();
         create_layout();
+        open_pipeline_cache(options.pipeline_cache);
     } catch (...) {
         release();  // members' destructors will not run release() for a throwing constructor
         throw;
@@ -136,6 +137,7 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
                                                         std::to_string(caller.queue_index) + " in family " +
                                                         std::to_string(queue_family));
         create_layout();
+        open_pipeline_cache(options.pipeline_cache);
     } catch (...) {
         release();
         throw;
@@ -387,25 +389,24 @@ VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineL
     pci.stage.pSpecializationInfo = &spec;
     pci.layout = with_layout;
     VkPipeline pipe = VK_NULL_HANDLE;
-    VkResult r = api->vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pci, nullptr, &pipe);
+    VkResult r = api->vkCreateComputePipelines(device, pipeline_cache ? pipeline_cache->handle() : VK_NULL_HANDLE, 1,
+                                               &pci, nullptr, &pipe);
     api->vkDestroyShaderModule(device, module, nullptr);  // the pipeline keeps what it needs
     vk::check(r, ("vkCreateComputePipelines(" + shader + ")").c_str());
     return pipe;
 }
 
-std::uint32_t Context::Impl::memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
-                                         VkMemoryPropertyFlags preferred) const {
-    const auto& memory = memory_types.properties();
-    int fallback = -1;
-    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-        if (!(type_bits & (1u << i))) continue;
-        auto flags = memory.memoryTypes[i].propertyFlags;
-        if ((flags & required) != required) continue;
-        if ((flags & preferred) == preferred) return i;
-        if (fallback < 0) fallback = int(i);
-    }
-    if (fallback < 0) throw Error(ErrorKind::Device, info.name + ": no suitable memory type");
-    return std::uint32_t(fallback);
+void Context::Impl::note_system_memory(VkBuffer buffer, bool in_system_memory) {
+    std::lock_guard lock(system_memory_mutex_);
+    if (in_system_memory)
+        system_memory_buffers_.insert(buffer);
+    else
+        system_memory_buffers_.erase(buffer);
+}
+
+bool Context::Impl::in_system_memory(VkBuffer buffer) const {
+    std::lock_guard lock(system_memory_mutex_);
+    return system_memory_buffers_.count(buffer) > 0;
 }
 
 void Context::Impl::adapted(const std::string& what) {
@@ -426,10 +427,18 @@ void Context::Impl::note_fallback(std::uint32_t wanted, std::uint32_t taken) {
 
 Context::Impl::~Impl() { release(); }
 
+void Context::Impl::open_pipeline_cache(const std::string& path) {
+    std::string file = path;
+    if (file.empty())
+        if (const char* env = std::getenv("VKFUSE_PIPELINE_CACHE"); env && *env) file = env;
+    if (!file.empty()) pipeline_cache = std::make_unique<vk::PipelineCache>(*api, device, properties, file);
+}
+
 void Context::Impl::release() {
     // A caller's device may be busy with the caller's own work: vkfuse's
     // submissions were each waited for by the plan that made them.
     if (device && owns_device && api->vkDeviceWaitIdle) api->vkDeviceWaitIdle(device);
+    pipeline_cache.reset();  // written back to its file, if it grew
     if (device && api->vkDestroyPipeline) {  // null only where loading the device's entry points failed
         for (auto& [name, pipe] : pipelines_) api->vkDestroyPipeline(device, pipe, nullptr);
         if (layout) api->vkDestroyPipelineLayout(device, layout, nullptr);
@@ -516,6 +525,7 @@ FilterArithmetic Context::filter_arithmetic() const { return impl_->filter_arith
 bool Context::splits_products() const { return impl_->products_split(); }
 std::string Context::device_profile() const { return impl_->profile ? std::string(impl_->profile->name) : ""; }
 std::vector<std::string> Context::adaptations() const { return impl_->adaptations(); }
+std::string Context::pipeline_cache() const { return impl_->pipeline_cache ? impl_->pipeline_cache->state() : ""; }
 
 std::vector<MemoryHeap> Context::memory_heaps() const {
     const Impl& im = *impl_;

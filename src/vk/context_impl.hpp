@@ -15,6 +15,7 @@
 #include "vk/device_profile.hpp"
 #include "vk/kernel_interface.hpp"
 #include "vk/memory_types.hpp"
+#include "vk/pipeline_cache.hpp"
 #include "vkfuse/vk/context.hpp"
 #include "vkfuse/vk/interop.hpp"
 
@@ -52,6 +53,9 @@ struct Context::Impl {
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
 
+    // ContextOptions::pipeline_cache (or VKFUSE_PIPELINE_CACHE): null for none.
+    std::unique_ptr<vk::PipelineCache> pipeline_cache;
+
     std::mutex queue_mutex;  // vkQueueSubmit needs external synchronisation across threads
 
     std::function<void(const std::string&)> on_validation_message;
@@ -74,10 +78,6 @@ struct Context::Impl {
     VkPipeline create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
                                std::span<const std::uint32_t> specialization = {});
 
-    // First memory type with all `required` flags among those allowed by type_bits.
-    std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
-                              VkMemoryPropertyFlags preferred) const;
-
     // Compensated float32 without fma (compensated.glsl's SPLIT_PRODUCTS,
     // given to every pipeline as kSplitProductsConstant): decided on the first
     // call, before the first compensated kernel is built, by asking the device
@@ -95,6 +95,12 @@ struct Context::Impl {
     VkDeviceAddress handle_address(VkDeviceSize bytes) {
         return next_handle_address_.fetch_add((bytes + 511) / 256 * 256);
     }
+    // Buffers of host memory imported into system memory on a device that
+    // has device-local memory (DeviceMemory::import_host on a discrete GPU):
+    // a plan reading its frames from one copies them to device-local memory
+    // first. Noted by the import, forgotten when it is released.
+    void note_system_memory(VkBuffer buffer, bool in_system_memory);
+    bool in_system_memory(VkBuffer buffer) const;
 
 private:
     std::mutex products_mutex_;
@@ -105,6 +111,8 @@ private:
     std::atomic<VkDeviceAddress> next_handle_address_{VkDeviceAddress(1) << 40};
     mutable std::mutex adaptations_mutex_;
     std::vector<std::string> adaptations_;  // in the order they happened, each once
+    mutable std::mutex system_memory_mutex_;
+    std::set<VkBuffer> system_memory_buffers_;
     std::mutex pipelines_mutex_;
     std::map<std::pair<std::string, std::vector<std::uint32_t>>, VkPipeline> pipelines_;
     std::map<std::string, vk::KernelInterface> interfaces_;
@@ -117,6 +125,8 @@ private:
     void choose_filter_arithmetic(FilterArithmetic wanted);
     void create_device();
     void create_layout();
+    // The pipeline cache the options or the environment name, if any.
+    void open_pipeline_cache(const std::string& path);
     void release();  // destroys every Vulkan object; safe to call twice
 };
 

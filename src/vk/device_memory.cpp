@@ -19,6 +19,12 @@ struct DeviceMemory::Impl {
     VkDeviceSize allocation = 0;
     bool exportable = false;
     Context::Impl* ctx = nullptr;
+    Impl() = default;
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+    ~Impl() {
+        if (ctx && buffer.handle()) ctx->note_system_memory(buffer.handle(), false);
+    }
 };
 
 namespace {
@@ -35,10 +41,11 @@ void need(bool has, const Context::Impl& ctx, const char* extension, const char*
 // among allowed_types. allocation 0 is an export (memory made here), any
 // other size an import. *allocated_memory is set once Vulkan holds the
 // memory (and with it an imported fd). Throws naming `what`.
+// visible_types: the (visible) memory types acceptable beside those.
 vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryHandleTypeFlagBits handle_type,
                        const void* import, VkDeviceSize allocation, std::uint32_t allowed_types,
                        const std::string& what, VkDeviceSize* allocated, void* host_pointer = nullptr,
-                       bool* allocated_memory = nullptr) {
+                       bool* allocated_memory = nullptr, std::uint32_t visible_types = ~0u) {
     if (bytes == 0) throw Error(ErrorKind::InvalidArgument, what + ": 0 bytes");
     const vk::Api& api = *ctx.api;
     // Memory shared through this handle type must suit such a buffer; a
@@ -89,13 +96,16 @@ vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryH
         // (lavapipe, integrated GPUs): the host then sees the memory as well.
         const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         const auto& memory_props = ctx.memory_types.properties();
-        const std::uint32_t types = ctx.memory_types.visible_bits(req.memoryTypeBits & allowed_types);
+        const std::uint32_t types = ctx.memory_types.visible_bits(req.memoryTypeBits & allowed_types) & visible_types;
+        if (types == 0)
+            throw Error(ErrorKind::Device, what + ": no memory type serves both the buffer and the shared memory");
         bool device_local = false;
         for (std::uint32_t i = 0; i < memory_props.memoryTypeCount; ++i)
             if ((types >> i & 1u) && (memory_props.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
                 device_local = true;
-        mai.memoryTypeIndex = ctx.memory_type(types, device_local ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : 0,
-                                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | host);
+        const VkMemoryPropertyFlags required = device_local ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : 0;
+        mai.memoryTypeIndex = ctx.memory_types.ranked(types, {required | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | host, required})
+                                  .front();  // types is not empty, and every one has `required` or none is device-local
         mai_type = mai.memoryTypeIndex;
         vk::check(ctx.memory_types.allocate(api, ctx.device, mai, &memory), (what + ": vkAllocateMemory").c_str());
         if (allocated_memory) *allocated_memory = true;
@@ -191,8 +201,18 @@ DeviceMemory DeviceMemory::import_host(Context& context, void* pointer, VkDevice
     imported.pHostPointer = pointer;
     auto impl = std::make_unique<Impl>();
     impl->ctx = &ctx;
+    // A discrete GPU imports host memory into system memory only: so does
+    // a simulated one (vk/memory_types.hpp), whose types all share one real type.
+    std::uint32_t system_types = ~0u;
+    if (ctx.memory_types.simulated()) {
+        const auto& memory = ctx.memory_types.properties();
+        system_types = 0;
+        for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+            if (!(memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) system_types |= 1u << i;
+    }
     impl->buffer = make_buffer(ctx, bytes, handle, &imported, bytes, props.memoryTypeBits, "import_host",
-                               &impl->allocation, pointer);
+                               &impl->allocation, pointer, nullptr, system_types);
+    ctx.note_system_memory(impl->buffer.handle(), !impl->buffer.device_local() && ctx.memory_types.has_device_local());
     return DeviceMemory(std::move(impl));
 }
 

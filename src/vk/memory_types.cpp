@@ -1,5 +1,7 @@
 #include "vk/memory_types.hpp"
 
+#include <algorithm>
+
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
@@ -94,6 +96,17 @@ std::string MemoryTypes::describe_heap(std::uint32_t heap) const {
     const bool local = visible_.memoryHeaps[heap].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT;
     return std::string(local ? "device-local" : "system") + (local && visible ? " host-visible" : "") + " heap " +
            std::to_string(heap) + " (" + std::to_string(visible_.memoryHeaps[heap].size >> 20) + " MiB)";
+}
+
+std::vector<std::uint32_t> MemoryTypes::ranked(std::uint32_t type_bits,
+                                             std::initializer_list<VkMemoryPropertyFlags> preferences) const {
+    std::vector<std::uint32_t> types;
+    for (VkMemoryPropertyFlags wanted : preferences)
+        for (std::uint32_t i = 0; i < visible_.memoryTypeCount; ++i)
+            if ((type_bits >> i & 1u) && (visible_.memoryTypes[i].propertyFlags & wanted) == wanted &&
+                std::find(types.begin(), types.end(), i) == types.end())
+                types.push_back(i);
+    return types;
 }
 
 }  // namespace vkfuse::vk

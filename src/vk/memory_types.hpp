@@ -9,7 +9,9 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "vk/api.hpp"
 
@@ -30,6 +32,12 @@ public:
     bool has_device_local() const;  // some type is DEVICE_LOCAL
     // Visible types whose real type is among real_bits (a buffer's memoryTypeBits).
     std::uint32_t visible_bits(std::uint32_t real_bits) const;
+    // The visible types among type_bits with every flag of the first
+    // preference, then those with the next's, and so on: best first, each
+    // once; empty where none has even the last's. Every choice of a memory
+    // type is made here (vk/buffer.cpp, vk/device_memory.cpp).
+    std::vector<std::uint32_t> ranked(std::uint32_t type_bits,
+                                      std::initializer_list<VkMemoryPropertyFlags> preferences) const;
     // Whether memory of visible type `type` is shadowed: the host works on a
     // copy that only flush/invalidate exchange with the memory.
     bool shadowed(std::uint32_t type) const;

@@ -79,6 +79,13 @@ struct ContextOptions {
     // environment when set, else none. Throws Error(InvalidArgument) for an
     // unknown name.
     std::string device_profile;
+    // A file the compute pipelines are cached in across runs: read at start
+    // where its header names this device and driver (else ignored, as is a
+    // file over 64 MiB) and written back whole when the context ends, if it
+    // grew. For drivers that keep no cache of their own. "":
+    // VKFUSE_PIPELINE_CACHE in the environment when set, else none. Throws
+    // Error(Io) when its directory does not exist or it is not a regular file.
+    std::string pipeline_cache;
 };
 
 // The simulated device profiles, in the order `vkfuse info` lists them:
@@ -132,6 +139,9 @@ public:
     // memory heap's buffers placed in another, products split. Empty where
     // nothing needed changing.
     std::vector<std::string> adaptations() const;
+    // The pipeline cache file in use and what it gave at start ("PATH: loaded
+    // N bytes", "PATH: starts empty (why)"); "" for none.
+    std::string pipeline_cache() const;
     // Number of validation messages seen so far (0 unless validation is on).
     std::uint64_t validation_message_count() const;
 
