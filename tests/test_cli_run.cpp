@@ -91,6 +91,30 @@ TEST(CliRun, SixteenSensorsOneSubmitPerCycle) {
     EXPECT_TRUE(has(metrics[16], "\"cycle\": 1, \"sensor\": \"SIM-0001\", \"status\": \"ok\"")) << metrics[16];
 }
 
+// Two cycles in flight: the device fuses cycle c + 1 while c is written; the
+// run writes exactly what a round trip per cycle writes.
+TEST(CliRun, TwoCyclesInFlightWriteWhatTheRoundTripWrites) {
+    TempDir tmp;
+    const CliResult recorded =
+        run_cli({"run", "--virtual-clock", "--sensors", "2", "--cycles", "4", "--background-frames", "2", "--skip",
+                 "off", "--method", "wavelet", "--record", tmp.file("rec")});
+    ASSERT_EQ(recorded.status, 0) << recorded.err;
+    for (const char* n : {"1", "2"}) {
+        const CliResult r = run_cli({"run", "--replay", tmp.file("rec"), "--skip", "off", "--cycles-in-flight", n,
+                                     "--out", tmp.file(std::string("out") + n)});
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_TRUE(has(r.out, "\"cycles\": 4, \"sensors\": 2,")) << r.out;
+    }
+    EXPECT_EQ(read_bytes(tmp.file("out2/metrics.jsonl")), read_bytes(tmp.file("out1/metrics.jsonl")));
+    const std::vector<std::string> files = files_under(tmp.file("out1"));
+    EXPECT_EQ(files_under(tmp.file("out2")), files);
+    for (const std::string& f : files) {
+        if (f.rfind("fused/", 0) == 0) {
+            EXPECT_EQ(read_bytes(tmp.file("out2/" + f)), read_bytes(tmp.file("out1/" + f))) << f;
+        }
+    }
+}
+
 TEST(CliRun, ReplayReproducesTheRecordedRun) {
     TempDir tmp;
     const std::vector<std::string> common{"--sequence", "15,15,15+0,15,0+15,0,0", "--method", "laplacian"};

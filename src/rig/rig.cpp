@@ -402,6 +402,11 @@ std::optional<SwitchTiming> Rig::timing(std::size_t sensor) const {
 }
 
 bool Rig::all_failed() const {
+    // Two cycles in flight: a cycle taken ahead with a sensor's frames in it
+    // is still to be returned.
+    if (impl_->ahead)
+        for (const SensorCycle& s : impl_->ahead->sensors)
+            if (s.status == SensorStatus::Ok) return false;
     std::lock_guard lock(impl_->hub->mutex);
     for (const rig::SensorSlot& s : impl_->hub->slots)
         if (!s.failed || s.ready) return false;  // a cycle delivered before failing still counts

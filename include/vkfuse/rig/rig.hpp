@@ -140,7 +140,8 @@ public:
     std::string serial(std::size_t sensor) const;
     // What calibration measured (nullopt when judging by label or not yet done).
     std::optional<SwitchTiming> timing(std::size_t sensor) const;
-    // True when every sensor has failed and no cycle is left to take: nothing more will come.
+    // True when every sensor has failed and no cycle is left to take (or, with
+    // two cycles in flight, to return): nothing more will come.
     bool all_failed() const;
     // Fusion submits so far: one per cycle for all sensors together.
     std::uint64_t submits() const;
