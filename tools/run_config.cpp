@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include "io/file_bytes.hpp"
 #include "io/json_value.hpp"
@@ -13,9 +15,66 @@ namespace {
 
 constexpr std::size_t kMaxConfigBytes = 1 << 20;
 
-// Every key a configuration may hold: what run_config_json writes.
-constexpr const char* kConfigKeys[] = {"format", "version", "sequence", "method",      "wavelet",
-                                       "levels", "mode",    "base_rule", "detail_rule", "tuned"};
+// A string field of the configuration: its text read into the spec
+// (throwing Error on a bad value).
+template <typename Parse>
+void read_text(const json::Value& v, const std::string& key, const std::string& subject, Parse parse) {
+    if (!v.is_string()) throw Error(ErrorKind::InvalidArgument, subject + ": \"" + key + "\" must be a string");
+    try {
+        parse(v.string());
+    } catch (const Error& e) {
+        if (std::string(e.what()).rfind(subject, 0) == 0) throw;
+        throw Error(ErrorKind::InvalidArgument, subject + ": " + e.what());
+    }
+}
+
+// The fusion's fields, each written and read here alone: run_config_json
+// writes them in this order and read_run_config accepts exactly these keys
+// beside format, version, sequence and tuned.
+struct FusionField {
+    const char* key;
+    json::Value (*write)(const FusionSpec&);
+    void (*read)(const json::Value&, FusionSpec&, const std::string& subject);
+};
+constexpr FusionField kFusionFields[] = {
+    {"method", [](const FusionSpec& f) { return json::Value(std::string(to_string(f.method))); },
+     [](const json::Value& v, FusionSpec& f, const std::string& subject) {
+         read_text(v, "method", subject, [&](const std::string& t) { f.method = parse_method(t); });
+     }},
+    {"wavelet", [](const FusionSpec& f) { return json::Value(std::string(to_string(f.wavelet))); },
+     [](const json::Value& v, FusionSpec& f, const std::string& subject) {
+         read_text(v, "wavelet", subject, [&](const std::string& t) { f.wavelet = parse_wavelet(t); });
+     }},
+    {"levels", [](const FusionSpec& f) { return json::Value(f.levels); },
+     [](const json::Value& v, FusionSpec& f, const std::string& subject) {
+         if (!v.is_number()) throw Error(ErrorKind::InvalidArgument, subject + ": \"levels\" must be a number");
+         const double levels = v.number();
+         if (levels < 0 || levels > 64 || levels != std::floor(levels))
+             throw Error(ErrorKind::InvalidArgument, subject + ": \"levels\" must be a whole number from 0 to 64");
+         f.levels = int(levels);
+     }},
+    {"mode", [](const FusionSpec& f) { return json::Value(std::string(to_string(f.mode))); },
+     [](const json::Value& v, FusionSpec& f, const std::string& subject) {
+         read_text(v, "mode", subject, [&](const std::string& t) { f.mode = parse_wavelet_mode(t); });
+     }},
+    {"base_rule", [](const FusionSpec& f) { return json::Value(std::string(to_string(f.base_rule))); },
+     [](const json::Value& v, FusionSpec& f, const std::string& subject) {
+         read_text(v, "base_rule", subject, [&](const std::string& t) { f.base_rule = parse_rule(t, "base_rule"); });
+     }},
+    {"detail_rule", [](const FusionSpec& f) { return json::Value(std::string(to_string(f.detail_rule))); },
+     [](const json::Value& v, FusionSpec& f, const std::string& subject) {
+         read_text(v, "detail_rule", subject,
+                   [&](const std::string& t) { f.detail_rule = parse_rule(t, "detail_rule"); });
+     }},
+};
+
+// Every key a configuration may hold, in the order run_config_json writes them.
+std::vector<std::string> config_keys() {
+    std::vector<std::string> keys{"format", "version", "sequence"};
+    for (const FusionField& f : kFusionFields) keys.emplace_back(f.key);
+    keys.emplace_back("tuned");
+    return keys;
+}
 
 const json::Value* member(const json::Value& root, const char* key, bool (json::Value::*is)() const,
                           const std::string& subject, const char* expected, bool required) {
@@ -31,15 +90,8 @@ const json::Value* member(const json::Value& root, const char* key, bool (json::
 }  // namespace
 
 std::string run_config_json(const RunConfig& c, json::Value tuned) {
-    json::Value::Object root{{"format", "vkfuse-config"},
-                             {"version", 1},
-                             {"sequence", to_string(c.sequence)},
-                             {"method", std::string(to_string(c.fusion.method))},
-                             {"wavelet", std::string(to_string(c.fusion.wavelet))},
-                             {"levels", c.fusion.levels},
-                             {"mode", std::string(to_string(c.fusion.mode))},
-                             {"base_rule", std::string(to_string(c.fusion.base_rule))},
-                             {"detail_rule", std::string(to_string(c.fusion.detail_rule))}};
+    json::Value::Object root{{"format", "vkfuse-config"}, {"version", 1}, {"sequence", to_string(c.sequence)}};
+    for (const FusionField& f : kFusionFields) root.emplace_back(f.key, f.write(c.fusion));
     if (!tuned.is_null()) root.emplace_back("tuned", std::move(tuned));
     return json::write(root) + "\n";
 }
@@ -63,10 +115,11 @@ RunConfig read_run_config(const std::string& path) {
     // A misspelt key would silently leave its default in force, and of a key
     // given twice one would silently win: both are refused.
     const json::Value::Object& members = root.object();
+    const std::vector<std::string> keys = config_keys();
     for (auto it = members.begin(); it != members.end(); ++it) {
-        if (std::find(std::begin(kConfigKeys), std::end(kConfigKeys), it->first) == std::end(kConfigKeys)) {
+        if (std::find(keys.begin(), keys.end(), it->first) == keys.end()) {
             std::string expected;
-            for (const char* k : kConfigKeys) expected += (expected.empty() ? "" : ", ") + std::string(k);
+            for (const std::string& k : keys) expected += (expected.empty() ? "" : ", ") + k;
             throw Error(ErrorKind::InvalidArgument,
                         subject + ": unknown key " + json::quote(it->first) + " (expected " + expected + ")");
         }
@@ -79,28 +132,13 @@ RunConfig read_run_config(const std::string& path) {
     const json::Value* version = member(root, "version", &json::Value::is_number, subject, "a number", true);
     if (version->number() != 1) throw Error(ErrorKind::InvalidArgument, subject + ": version must be 1");
     RunConfig c;
-    const auto text_of = [&](const char* key, bool required) -> const std::string* {
-        const json::Value* v = member(root, key, &json::Value::is_string, subject, "a string", required);
-        return v ? &v->string() : nullptr;
-    };
-    try {
-        c.sequence = parse_sequence(*text_of("sequence", true));
-        for (const Illumination& s : c.sequence) s.check(LedLayout::digit());
-        if (auto v = text_of("method", false)) c.fusion.method = parse_method(*v);
-        if (auto v = text_of("wavelet", false)) c.fusion.wavelet = parse_wavelet(*v);
-        if (auto v = text_of("mode", false)) c.fusion.mode = parse_wavelet_mode(*v);
-        if (auto v = text_of("base_rule", false)) c.fusion.base_rule = parse_rule(*v, "base_rule");
-        if (auto v = text_of("detail_rule", false)) c.fusion.detail_rule = parse_rule(*v, "detail_rule");
-    } catch (const Error& e) {
-        if (std::string(e.what()).rfind(subject, 0) == 0) throw;
-        throw Error(ErrorKind::InvalidArgument, subject + ": " + e.what());
-    }
-    if (const json::Value* v = member(root, "levels", &json::Value::is_number, subject, "a number", false)) {
-        const double levels = v->number();
-        if (levels < 0 || levels > 64 || levels != std::floor(levels))
-            throw Error(ErrorKind::InvalidArgument, subject + ": \"levels\" must be a whole number from 0 to 64");
-        c.fusion.levels = int(levels);
-    }
+    read_text(*member(root, "sequence", &json::Value::is_string, subject, "a string", true), "sequence", subject,
+              [&](const std::string& t) {
+                  c.sequence = parse_sequence(t);
+                  for (const Illumination& s : c.sequence) s.check(LedLayout::digit());
+              });
+    for (const FusionField& f : kFusionFields)
+        if (const json::Value* v = root.find(f.key)) f.read(*v, c.fusion, subject);
     return c;
 }
 

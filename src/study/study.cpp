@@ -64,13 +64,37 @@ std::vector<Gains> gains_of(const std::vector<Metrics>& metrics, const std::vect
     return g;
 }
 
+// check_study_shape once the options are checked and the methods selected.
+void check_shape(const StudyShape& shape, const StudyOptions& options, const std::vector<StudyMethod>& methods,
+                 const std::string& subject) {
+    check_study_size(shape.settings, shape.objects, shape.height, shape.width, subject);
+    const std::size_t n = shape.settings;
+    const std::size_t most = std::min<std::size_t>(std::size_t(options.max_k), n);
+    for (const StudyMethod& m : methods)
+        for (std::size_t k = 2; k <= most; ++k)
+            if (takes(m, k)) try {
+                    validate(m.spec, shape.height, shape.width, 3, int(k));
+                } catch (const Error& e) {
+                    throw Error(ErrorKind::InvalidArgument, subject + ": " + std::to_string(shape.width) + "x" +
+                                                                std::to_string(shape.height) +
+                                                                " frames do not suit " + m.name + " (" + e.what() + ")");
+                }
+    std::size_t count = 0;
+    for (std::size_t k = 2; k <= most; ++k) count += choose(n, k);
+    if (count > kMaxCombinations)
+        throw Error(ErrorKind::InvalidArgument, subject + ": " + std::to_string(n) +
+                                                    " settings in combinations of up to " +
+                                                    std::to_string(options.max_k) + " make more than " +
+                                                    std::to_string(kMaxCombinations) + " combinations; take fewer (max_k)");
+}
+
 class Study {
 public:
     Study(const Dataset& dataset, const StudyOptions& options, Context* context)
         : options_(checked(options)), methods_(select_study_methods(options.methods)),
           data_(load_study_data(dataset, options.serial, options.objects)), evaluator_(data_, context) {
-        check_study_shape({data_.settings.size(), data_.objects, data_.height, data_.width}, options,
-                          dataset.directory);
+        check_shape({data_.settings.size(), data_.objects, data_.height, data_.width}, options, methods_,
+                    dataset.directory);
         const std::size_t n = data_.settings.size();
         for (std::size_t k = 2; k <= std::min<std::size_t>(std::size_t(options.max_k), n); ++k)
             append_subsets(n, k, table_.combinations);
@@ -326,28 +350,8 @@ std::vector<std::size_t> fusion_order(const StudyMethod& method, const std::vect
 }
 
 void check_study_shape(const StudyShape& shape, const StudyOptions& options, const std::string& subject) {
-    using study::choose, study::kMaxCombinations, study::takes;
     study::check_options(options);
-    const std::vector<StudyMethod> methods = select_study_methods(options.methods);
-    study::check_study_size(shape.settings, shape.objects, shape.height, shape.width, subject);
-    const std::size_t n = shape.settings;
-    const std::size_t most = std::min<std::size_t>(std::size_t(options.max_k), n);
-    for (const StudyMethod& m : methods)
-        for (std::size_t k = 2; k <= most; ++k)
-            if (takes(m, k)) try {
-                    validate(m.spec, shape.height, shape.width, 3, int(k));
-                } catch (const Error& e) {
-                    throw Error(ErrorKind::InvalidArgument, subject + ": " + std::to_string(shape.width) + "x" +
-                                                                std::to_string(shape.height) +
-                                                                " frames do not suit " + m.name + " (" + e.what() + ")");
-                }
-    std::size_t count = 0;
-    for (std::size_t k = 2; k <= most; ++k) count += choose(n, k);
-    if (count > kMaxCombinations)
-        throw Error(ErrorKind::InvalidArgument, subject + ": " + std::to_string(n) +
-                                                    " settings in combinations of up to " +
-                                                    std::to_string(options.max_k) + " make more than " +
-                                                    std::to_string(kMaxCombinations) + " combinations; take fewer (max_k)");
+    study::check_shape(shape, options, select_study_methods(options.methods), subject);
 }
 
 StudyResult run_study(const Dataset& dataset, const StudyOptions& options, Context* context) {
