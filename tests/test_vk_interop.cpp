@@ -401,7 +401,12 @@ TEST_F(Interop, HostMemoryIsReadInPlaceWithNoStagingCopy) {
     }
     expect_error([&] { DeviceMemory::import_host(ctx, static_cast<std::uint8_t*>(host.get()) + 1, align); },
                  "import_host", ErrorKind::InvalidArgument, "multiples of " + std::to_string(align));
-    for (const std::string& what : ctx.adaptations()) EXPECT_EQ(what.find("imported host memory"), std::string::npos) << what;
+    // Read in place where the import is device memory (lavapipe's own types);
+    // under the discrete profile (tools/vulkan_variants.sh) it is system
+    // memory, copied in at the start of each cycle instead.
+    bool copied = false;
+    for (const std::string& what : ctx.adaptations()) copied = copied || what.find("imported host memory") != std::string::npos;
+    EXPECT_EQ(copied, ctx.device_profile() == "discrete-no-rebar");
 }
 
 // On a discrete GPU imported host memory is system memory: a plan reading its
