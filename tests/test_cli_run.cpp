@@ -104,6 +104,7 @@ TEST(CliRun, TwoCyclesInFlightWriteWhatTheRoundTripWrites) {
                                      "--out", tmp.file(std::string("out") + n)});
         ASSERT_EQ(r.status, 0) << r.err;
         EXPECT_TRUE(has(r.out, "\"cycles\": 4, \"sensors\": 2,")) << r.out;
+        EXPECT_TRUE(has(r.out, std::string("\"cycles_in_flight\": ") + n + ",")) << r.out;
     }
     EXPECT_EQ(read_bytes(tmp.file("out2/metrics.jsonl")), read_bytes(tmp.file("out1/metrics.jsonl")));
     const std::vector<std::string> files = files_under(tmp.file("out1"));

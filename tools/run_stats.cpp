@@ -101,7 +101,7 @@ std::string RunStats::summary_json(const Rig& rig) const {
            ", \"fused_fps_per_sensor\": " + json_number(double(fused_) / wall / double(sensors_.size())) +
            ", \"sensor_clock_fps_min\": " + json_number(fps_min) +
            ", \"sensor_clock_fps_mean\": " + json_number(fps_mean) +
-           ", \"ms_per_cycle\": {\"capture\": " + json_number(capture_s_ / n * 1e3) +
+           ", \"cycles_in_flight\": " + std::to_string(rig.cycles_in_flight()) + ", \"ms_per_cycle\": {\"capture\": " + json_number(capture_s_ / n * 1e3) +
            ", \"fuse\": " + json_number(fuse_s_ / n * 1e3) + ", \"write\": " + json_number(write_s_ / n * 1e3) +
            "}, \"skip\": {\"mode\": " + json_string(std::string(to_string(skip_.policy))) +
            ", \"threshold\": " + json_number(skip_.threshold) +

@@ -415,6 +415,8 @@ bool Rig::all_failed() const {
 
 std::uint64_t Rig::submits() const { return impl_->engine->submits(); }
 
+int Rig::cycles_in_flight() const { return impl_->engine->cycles_in_flight(); }
+
 std::string_view to_string(SensorStatus status) {
     switch (status) {
         case SensorStatus::Ok: return "ok";

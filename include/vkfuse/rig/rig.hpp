@@ -143,6 +143,9 @@ public:
     // True when every sensor has failed and no cycle is left to take (or, with
     // two cycles in flight, to return): nothing more will come.
     bool all_failed() const;
+    // Cycles the rig keeps on the device at once (RigConfig::cycles_in_flight;
+    // 1 on the CPU path).
+    int cycles_in_flight() const;
     // Fusion submits so far: one per cycle for all sensors together.
     std::uint64_t submits() const;
 
