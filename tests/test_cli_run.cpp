@@ -91,6 +91,19 @@ TEST(CliRun, SixteenSensorsOneSubmitPerCycle) {
     EXPECT_TRUE(has(metrics[16], "\"cycle\": 1, \"sensor\": \"SIM-0001\", \"status\": \"ok\"")) << metrics[16];
 }
 
+// Two runs' --out directories hold the same metrics.jsonl, the same files and
+// the same fused PNGs, byte for byte.
+void expect_same_outputs(const TempDir& tmp, const std::string& expected, const std::string& actual) {
+    EXPECT_EQ(read_bytes(tmp.file(actual + "/metrics.jsonl")), read_bytes(tmp.file(expected + "/metrics.jsonl")));
+    const std::vector<std::string> files = files_under(tmp.file(expected));
+    EXPECT_EQ(files_under(tmp.file(actual)), files);
+    for (const std::string& f : files) {
+        if (f.rfind("fused/", 0) == 0) {
+            EXPECT_EQ(read_bytes(tmp.file(actual + "/" + f)), read_bytes(tmp.file(expected + "/" + f))) << f;
+        }
+    }
+}
+
 // Two cycles in flight: the device fuses cycle c + 1 while c is written; the
 // run writes exactly what a round trip per cycle writes.
 TEST(CliRun, TwoCyclesInFlightWriteWhatTheRoundTripWrites) {
@@ -106,14 +119,7 @@ TEST(CliRun, TwoCyclesInFlightWriteWhatTheRoundTripWrites) {
         EXPECT_TRUE(has(r.out, "\"cycles\": 4, \"sensors\": 2,")) << r.out;
         EXPECT_TRUE(has(r.out, std::string("\"cycles_in_flight\": ") + n + ",")) << r.out;
     }
-    EXPECT_EQ(read_bytes(tmp.file("out2/metrics.jsonl")), read_bytes(tmp.file("out1/metrics.jsonl")));
-    const std::vector<std::string> files = files_under(tmp.file("out1"));
-    EXPECT_EQ(files_under(tmp.file("out2")), files);
-    for (const std::string& f : files) {
-        if (f.rfind("fused/", 0) == 0) {
-            EXPECT_EQ(read_bytes(tmp.file("out2/" + f)), read_bytes(tmp.file("out1/" + f))) << f;
-        }
-    }
+    expect_same_outputs(tmp, "out1", "out2");
 }
 
 TEST(CliRun, ReplayReproducesTheRecordedRun) {
@@ -131,14 +137,7 @@ TEST(CliRun, ReplayReproducesTheRecordedRun) {
     // Skipping (static, the default) decides alike on the replayed frames:
     // one fusion, then reuse, and the same bytes.
     EXPECT_TRUE(has(replayed.out, "\"cycles\": 3, \"sensors\": 2, \"submits\": 1, \"fused\": 6,")) << replayed.out;
-    EXPECT_EQ(read_bytes(tmp.file("again/metrics.jsonl")), read_bytes(tmp.file("live/metrics.jsonl")));
-    const std::vector<std::string> files = files_under(tmp.file("live"));
-    EXPECT_EQ(files_under(tmp.file("again")), files);
-    for (const std::string& f : files) {
-        if (f.rfind("fused/", 0) == 0) {
-            EXPECT_EQ(read_bytes(tmp.file("again/" + f)), read_bytes(tmp.file("live/" + f))) << f;
-        }
-    }
+    expect_same_outputs(tmp, "live", "again");
 }
 
 // SIGINT: the run finishes the cycle in hand, flushes its files and exits 0.

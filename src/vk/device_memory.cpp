@@ -99,13 +99,9 @@ vk::Buffer make_buffer(Context::Impl& ctx, VkDeviceSize bytes, VkExternalMemoryH
         const std::uint32_t types = ctx.memory_types.visible_bits(req.memoryTypeBits & allowed_types) & visible_types;
         if (types == 0)
             throw Error(ErrorKind::Device, what + ": no memory type serves both the buffer and the shared memory");
-        bool device_local = false;
-        for (std::uint32_t i = 0; i < memory_props.memoryTypeCount; ++i)
-            if ((types >> i & 1u) && (memory_props.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
-                device_local = true;
-        const VkMemoryPropertyFlags required = device_local ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : 0;
-        mai.memoryTypeIndex = ctx.memory_types.ranked(types, {required | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | host, required})
-                                  .front();  // types is not empty, and every one has `required` or none is device-local
+        mai.memoryTypeIndex =  // types is not empty: the last preference takes any
+            ctx.memory_types.ranked(types, {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | host, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0})
+                .front();
         mai_type = mai.memoryTypeIndex;
         vk::check(ctx.memory_types.allocate(api, ctx.device, mai, &memory), (what + ": vkAllocateMemory").c_str());
         if (allocated_memory) *allocated_memory = true;

@@ -260,12 +260,6 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
                        packs ? std::optional(image) : std::nullopt);
 }
 
-void Plan::Impl::submit_and_wait() {
-    slot->submit();
-    ++submits;
-    slot->wait();
-}
-
 void Plan::Impl::wait_device() {
     if (!submitted) return;
     slot->wait();

@@ -291,7 +291,6 @@ struct Plan::Impl {
     // `buffers` on where given (a block after the first).
     void record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint32_t count,
                         std::optional<std::size_t> reuse_from);
-    void submit_and_wait();
     // make_plan()'s buffers, checked against the plan (vk/interop.cpp).
     void borrow_buffers(const PlanBuffers& io);
     // Throws unless every background and skip reference the plan needs is set.
