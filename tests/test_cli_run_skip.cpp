@@ -280,7 +280,7 @@ TEST(CliRunSkip, BadOptionsAreRefused) {
         {{"--skip-threshold", "nan"}, "--skip-threshold nan: expected a positive number"},
         {{"--skip", "off", "--skip-threshold", "5"}, "--skip-threshold 5: skipping is off"},
         {{"--sensors", "2", "--pressing", "3"}, "--pressing 3: more than the 2 simulated sensors"},
-        {{"--cycles-in-flight", "2"}, "--cycles-in-flight 2: needs --skip off (a skipping plan decides on the host between detection and fusion)"},
+        {{"--cycles-in-flight", "2"}, "--cycles-in-flight 2: needs --skip off (a skipping plan keeps its references and held results once, for 1 cycle in flight)"},
         {{"--skip", "off", "--cycles-in-flight", "3"}, "--cycles-in-flight 3: expected 1 or 2"},
     };
     for (const auto& [extra, message] : cases) expect_run_refused(extra, message);

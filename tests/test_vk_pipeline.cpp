@@ -147,7 +147,7 @@ TEST_F(VulkanTest, PipelineMisuseIsRefusedWithOneMessage) {
     PlanConfig skipping = config(Method::Wavelet, 2);
     skipping.input = PixelType::U8;
     skipping.skip.policy = SkipPolicy::Idle;
-    expect_refusal([&] { Plan p(ctx(), skipping); }, "a skipping plan decides on the host");
+    expect_refusal([&] { Plan p(ctx(), skipping); }, "a skipping plan keeps its references and held results once");
     expect_refusal([&] { make_plan(ctx(), config(Method::Brovey, 2), PlanBuffers{}); }, "keeps 1 cycle in flight");
 }
 

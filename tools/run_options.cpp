@@ -84,8 +84,8 @@ void background_options(const Args& args, RunOptions& o) {
         o.cycles_in_flight = parse_positive_int("--cycles-in-flight", *v);
         if (o.cycles_in_flight > 2) fail("--cycles-in-flight " + *v + ": expected 1 or 2");
         if (o.cycles_in_flight == 2 && o.skip.policy != SkipPolicy::Off)
-            fail("--cycles-in-flight 2: needs --skip off (a skipping plan decides on the host between detection "
-                 "and fusion)");
+            fail("--cycles-in-flight 2: needs --skip off (a skipping plan keeps its references and held results "
+                 "once, for 1 cycle in flight)");
     }
     metric_options(args, o);
 }

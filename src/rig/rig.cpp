@@ -49,8 +49,8 @@ void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors, c
         throw Error(ErrorKind::InvalidArgument, "rig: 2 cycles in flight need a GPU context (the CPU path fuses "
                                                 "each cycle as it is taken)");
     if (cfg.cycles_in_flight == 2 && cfg.skip.policy != SkipPolicy::Off)
-        throw Error(ErrorKind::InvalidArgument, "rig: 2 cycles in flight need skip off (a skipping plan decides "
-                                                "on the host between detection and fusion)");
+        throw Error(ErrorKind::InvalidArgument, "rig: 2 cycles in flight need skip off (a skipping plan keeps "
+                                                "its references and held results once, for 1 cycle in flight)");
 }
 
 // Replayed frames recorded for a later cycle than the one being assembled:

@@ -31,8 +31,8 @@ void validate_config(const PlanConfig& c, vk::PlanKind kind) {
         throw Error(ErrorKind::InvalidArgument, "plan: cycles_in_flight must be 1 or 2, got " +
                                                     std::to_string(c.cycles_in_flight));
     if (c.cycles_in_flight != 1 && c.skip.policy != SkipPolicy::Off)
-        throw Error(ErrorKind::InvalidArgument, "plan: a skipping plan decides on the host between its change "
-                                                "detection and its fusion, so it keeps 1 cycle in flight, not " +
+        throw Error(ErrorKind::InvalidArgument, "plan: a skipping plan keeps its references and held results "
+                                                "once, so it keeps 1 cycle in flight, not " +
                                                     std::to_string(c.cycles_in_flight));
     if (c.skip.policy != SkipPolicy::Off) {
         if (kind != vk::PlanKind::Fuse || c.input != PixelType::U8)
@@ -116,7 +116,11 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
         staged_frames = vk::Buffer(ctx, (device_frames.size() + 3) / 4 * 4, vk::MemoryUse::Device);
         ctx.adapted("frames in imported host memory are copied into device-local memory before each cycle");
     }
-    if (cfg.metrics.has(Metric::BackgroundDiff)) background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4, vk::MemoryUse::Upload);
+    // A skipping plan that decides on the device fills its slots' backgrounds there.
+    const bool skip_on_device = cfg.skip.policy != SkipPolicy::Off && vk::skip_decides_on_device(cfg);
+    if (cfg.metrics.has(Metric::BackgroundDiff))
+        background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4,
+                                skip_on_device ? vk::MemoryUse::Device : vk::MemoryUse::Upload);
     const std::size_t S = std::size_t(cfg.sensors);
     if (cfg.input == PixelType::F32 && brovey()) {
         thresholds = vk::Buffer(ctx, S * 4, vk::MemoryUse::Upload);
@@ -194,7 +198,9 @@ void Plan::Impl::record() {
     }
     if (cfg.skip.policy != SkipPolicy::Off) {
         skip.emplace(ctx, cfg, upload, addressed);
-        rec.compact_sensors(skip->indirect(), vk::SkipState::kMaxDispatches, S);
+        if (skip->on_device())
+            skip->record_on_device(rec, slot->recording_target(), per_sensor_buffers(*this).frames.all, background.span());
+        rec.compact_sensors(skip->indirect(), vk::SkipState::kFusionDispatches, S);
         background_in_slot.assign(std::size_t(cfg.sensors), -1);
     }
     const std::size_t first_intermediate = buffers.size();
@@ -368,6 +374,7 @@ void Plan::Impl::set_background(int sensor, const FrameView& bg) {
     im.background_set[std::size_t(sensor)] = true;
     if (im.skip) {
         im.skip->background_changed(sensor);
+        im.skip->set_background(sensor, dst);
         for (int& held : im.background_in_slot)
             if (held == sensor) held = -1;
     }
@@ -499,6 +506,12 @@ void Plan::Impl::prepare_device_frames() {
 
 void Plan::Impl::complete() {
     readback.invalidate();  // what the cycle wrote, visible where read-back memory is not coherent
+    // Decided on the device: whether it fused anyone is known now. A cycle
+    // that fused no one counts no fusion submit (Plan::submits).
+    if (skip && skip->on_device()) {
+        fused_last_run = skip->read_decision() > 0;
+        submits += fused_last_run;
+    }
     collected = true;
     std::fill(fused_fresh.begin(), fused_fresh.end(), false);
 }

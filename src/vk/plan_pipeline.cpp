@@ -30,7 +30,12 @@ void Plan::submit(std::span<const FrameView> frames) {
     } else {
         lane.upload_frames(frames);
     }
-    if (lane.skip) {
+    // A plan whose skipping the host decides runs its detection here and
+    // submits the fusion only where some sensor changed; one that decides on
+    // the device submits the whole cycle and learns at collect() whom it fused.
+    const bool host_decides = lane.skip && !lane.skip->on_device();
+    lane.fused_last_run = true;
+    if (host_decides) {
         // SkipPolicy::Static: the results of the sensors the last cycle fused
         // are kept before this one overwrites them (a skipping plan has one
         // lane, collected before this submit).
@@ -42,12 +47,10 @@ void Plan::submit(std::span<const FrameView> frames) {
         lane.skip->keep_frames(frames, fused_sensors);
         lane.compact(frames, fused_sensors);
         lane.fused_last_run = !fused_sensors.empty();
-    } else {
-        lane.fused_last_run = true;
     }
     if (lane.fused_last_run) {
         lane.slot->submit();
-        ++lane.submits;
+        lane.submits += !lane.skip || host_decides;
         lane.submitted = true;
     }
     p.collected = false;

@@ -14,6 +14,7 @@ namespace vkfuse::vk {
 SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& upload, bool addressed)
     : ctx_(ctx),
       cfg_(cfg),
+      on_device_(skip_decides_on_device(cfg)),
       tiles_x_(std::uint32_t(skip_tiles_x(cfg.width))),
       tiles_y_(std::uint32_t(skip_tiles_y(cfg.height))) {
     const std::size_t S = std::size_t(cfg.sensors), K = std::size_t(cfg.frames), tiles = tiles_x_ * tiles_y_;
@@ -26,8 +27,11 @@ SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& up
         previous_ = Buffer(ctx, (samples + 3) / 4 * 4, MemoryUse::Upload);
         statics_ = Buffer(ctx, S * tiles * 4, MemoryUse::Device);
     }
-    scores_readback_ = Buffer(ctx, S * tiles * 4 * (statics() ? 2 : 1), MemoryUse::Readback);
-    indirect_ = Buffer(ctx, kMaxDispatches * sizeof(VkDispatchIndirectCommand), MemoryUse::Upload);
+    // Scores, then statics' scores or the slots decided on the device.
+    scores_readback_ = Buffer(ctx, S * tiles * 4 + (statics() ? S * tiles * 4 : on_device_ ? S * 4 : 0), MemoryUse::Readback);
+    // Written by the host, or by skip_decide.comp.
+    indirect_ = Buffer(ctx, kMaxDispatches * sizeof(VkDispatchIndirectCommand),
+                       on_device_ ? MemoryUse::Device : MemoryUse::Upload);
     if (sparse_capable(cfg)) sparse_.emplace(ctx, cfg);
     reference_set_.assign(S, false);
     fused_.resize(S);
@@ -38,16 +42,14 @@ SkipState::SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& up
     kept_.assign(S, false);
     kept_image_.resize(S);
     kept_metrics_.resize(S);
-    record(upload, addressed);
+    if (on_device_)
+        make_device_buffers();
+    else
+        record(upload, addressed);
 }
 
-void SkipState::record(const Buffer& upload, bool addressed) {
-    sets_.emplace(ctx_);
-    detect_.emplace(ctx_, 0);
-    Recorder rec(ctx_, detect_->cmd(), VK_NULL_HANDLE, "", *sets_, addressed);
+void SkipState::record_detection(Recorder& rec, VkCommandBuffer cmd, const DeviceSpan& frames) {
     const Api& api = *ctx_.api;
-    const VkCommandBuffer cmd = detect_->cmd();
-    const VkDeviceSize score_bytes = scores_.size();
     // The kernel's atomicMax starts from 0.
     api.vkCmdFillBuffer(cmd, scores_.handle(), 0, VK_WHOLE_SIZE, 0);
     if (statics()) api.vkCmdFillBuffer(cmd, statics_.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -55,10 +57,9 @@ void SkipState::record(const Buffer& upload, bool addressed) {
                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     // Without Static the kernel never reads `previous` nor writes `statics`:
     // the frames and the scores stand in for their bindings.
-    const DeviceSpan previous = statics() ? previous_.span() : upload.span();
+    const DeviceSpan previous = statics() ? previous_.span() : frames;
     const DeviceSpan static_scores = statics() ? statics_.span() : scores_.span();
-    rec.dispatch("change_detect",
-                 {upload.span(), means_.span(), inv_noise_.span(), scores_.span(), previous, static_scores},
+    rec.dispatch("change_detect", {frames, means_.span(), inv_noise_.span(), scores_.span(), previous, static_scores},
                  PushConstants()
                      .u32(std::uint32_t(cfg_.width))
                      .u32(std::uint32_t(cfg_.height))
@@ -67,6 +68,16 @@ void SkipState::record(const Buffer& upload, bool addressed) {
                      .u32(cfg_.width % 4 == 0)
                      .u32(statics()),
                  tiles_x_, tiles_y_, std::uint32_t(cfg_.sensors));
+}
+
+void SkipState::record(const Buffer& upload, bool addressed) {
+    sets_.emplace(ctx_);
+    detect_.emplace(ctx_, 0);
+    Recorder rec(ctx_, detect_->cmd(), VK_NULL_HANDLE, "", *sets_, addressed);
+    const Api& api = *ctx_.api;
+    const VkCommandBuffer cmd = detect_->cmd();
+    record_detection(rec, cmd, upload.span());
+    const VkDeviceSize score_bytes = scores_.size();
     memory_barrier(api, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     const VkBufferCopy to_scores{0, 0, score_bytes}, to_statics{0, score_bytes, score_bytes};
@@ -132,11 +143,20 @@ const Image& SkipState::skipped_image(int sensor) const {
 }
 
 std::vector<int> SkipState::detect() {
-    const std::size_t tiles = tiles_x_ * tiles_y_;
     detect_->submit_and_wait();
     scores_readback_.invalidate();
     const float* scores = static_cast<const float*>(scores_readback_.mapped());
-    const float* still = statics() ? scores + std::size_t(cfg_.sensors) * tiles : nullptr;
+    const std::size_t tiles = tiles_x_ * tiles_y_;
+    const std::vector<int> fused = decide(scores, statics() ? scores + std::size_t(cfg_.sensors) * tiles : nullptr, nullptr);
+    auto* args = static_cast<VkDispatchIndirectCommand*>(indirect_.mapped());
+    for (std::size_t d = 0; d < dispatches_.size(); ++d)
+        args[d] = {dispatches_[d][0], dispatches_[d][1], dispatches_[d][2] * std::uint32_t(fused.size())};
+    if (sparse_ && !fused.empty()) sparse_->shrink(args);
+    return fused;
+}
+
+std::vector<int> SkipState::decide(const float* scores, const float* still, const std::uint32_t* device_slots) {
+    const std::size_t tiles = tiles_x_ * tiles_y_;
     std::vector<int> fused;
     if (sparse_) sparse_->begin_run();
     for (int s = 0; s < cfg_.sensors; ++s) {
@@ -168,13 +188,13 @@ std::vector<int> SkipState::detect() {
         o.fused_fraction = o.fused_region.share(cfg_.height, cfg_.width);
         o.changed_fraction = double(changed) / double(tiles);
         o.score = top;
+        // The device applies the same rule to the same floats (skip_decide.comp).
+        if (device_slots && device_slots[s] != (skipped ? kNotFused : std::uint32_t(fused.size())))
+            throw Error(ErrorKind::Device, "internal: the device's skip decision for sensor " + std::to_string(s) +
+                                               " differs from its scores'");
         slot_[std::size_t(s)] = skipped ? std::nullopt : std::optional<int>(int(fused.size()));
         if (!skipped) fused.push_back(s);
     }
-    auto* args = static_cast<VkDispatchIndirectCommand*>(indirect_.mapped());
-    for (std::size_t d = 0; d < dispatches_.size(); ++d)
-        args[d] = {dispatches_[d][0], dispatches_[d][1], dispatches_[d][2] * std::uint32_t(fused.size())};
-    if (sparse_ && !fused.empty()) sparse_->shrink(args);
     return fused;
 }
 

@@ -1,4 +1,17 @@
-// What a skipping plan (PlanConfig::skip) adds to a plan. Each run:
+// What a skipping plan (PlanConfig::skip) adds to a plan. Under
+// SkipPolicy::Idle the device decides, and a cycle is one submit
+// (vk/skip_on_device.cpp):
+//
+//   upload (S sensors) -> change_detect -> skip_decide (one workgroup):
+//        fused sensors -> slots 0..F-1, indirect arguments (z = F x its z per
+//        sensor), which slots' frames and backgrounds move
+//   -> scores and slots copied out -> skip_gather: frames of slots g..F-1
+//        through a scratch buffer, changed slots' backgrounds
+//   -> the fusion, recorded once with indirect dispatches (none run when F = 0)
+//
+// Where the host must decide (Static keeps results the host holds, Tiles
+// chooses regions on the host; and frames whose sensors do not start on
+// word boundaries, which the gathers cannot move), two submits:
 //
 //   upload (S sensors) -> change_detect -> scores read back       1st submit
 //   host: sensors with a tile over the threshold are "fused", the rest idle;
@@ -24,29 +37,49 @@
 #include "vk/command_slot.hpp"
 #include "vk/descriptor_sets.hpp"
 #include "vk/plan_sparse.hpp"
+#include "vk/recorder.hpp"
 #include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::vk {
 
+// Whether a skipping plan of cfg decides on the device, in one submit a cycle.
+bool skip_decides_on_device(const PlanConfig& cfg);
+
 class SkipState {
 public:
-    // Dispatches the fusion command buffer may hold: indirect arguments are
-    // written for each (12 bytes apiece).
+    // Indirect dispatches a plan may hold: the fusion's (kFusionDispatches),
+    // then the device decision's three gathers (12 bytes apiece).
     static constexpr std::uint32_t kMaxDispatches = 1024;
+    static constexpr std::uint32_t kFusionDispatches = kMaxDispatches - 3;
 
     SkipState(Context::Impl& ctx, const PlanConfig& cfg, const Buffer& upload, bool addressed);
     SkipState(const SkipState&) = delete;
     SkipState& operator=(const SkipState&) = delete;
 
     VkBuffer indirect() const { return indirect_.handle(); }
-    void set_dispatches(std::vector<std::array<std::uint32_t, 3>> per_sensor) { dispatches_ = std::move(per_sensor); }
+    // The fusion's indirect dispatches, each with z per sensor (after its recording).
+    void set_dispatches(std::vector<std::array<std::uint32_t, 3>> per_sensor);
+
+    // Decided on the device (skip_decides_on_device): record_on_device
+    // records the detection, the decision and the gathers into the plan's
+    // command buffer, before the fusion; `frames` are the plan's frames (the
+    // fused ones are moved into slots 0..F-1 there), `background_slots` the
+    // per-slot backgrounds the metrics read (empty without background_diff).
+    bool on_device() const { return on_device_; }
+    void record_on_device(Recorder& rec, VkCommandBuffer cmd, const DeviceSpan& frames,
+                          const DeviceSpan& background_slots);
+    // A sensor's background changed: planar, H*W*C floats, as the metrics take it.
+    void set_background(int sensor, const float* planar);
+    // After the cycle's fence: the device's decision becomes the outcomes and
+    // slots; returns the sensors fused.
+    int read_decision();
 
     void set_reference(int sensor, const SkipReference& reference);
     bool has_reference(int sensor) const { return reference_set_.at(std::size_t(sensor)); }
 
-    // Runs the detection over the uploaded frames and decides who is fused;
-    // returns the fused sensors in slot order and writes the indirect
-    // arguments for that many.
+    // Decided on the host: runs the detection over the uploaded frames and
+    // decides who is fused; returns the fused sensors in slot order and
+    // writes the indirect arguments for that many.
     std::vector<int> detect();
 
     const SkipOutcome& outcome(int sensor) const { return outcomes_.at(std::size_t(sensor)); }
@@ -72,14 +105,21 @@ public:
 private:
     Context::Impl& ctx_;
     PlanConfig cfg_;
+    bool on_device_;
     std::uint32_t tiles_x_, tiles_y_;
     Buffer means_;      // S*K*C planes, float32
     Buffer inv_noise_;  // S*K*tiles: 1 / tile noise
     Buffer scores_;     // S*tiles, device memory (the kernel's atomicMax)
     Buffer previous_;   // Static: S*K frames of each sensor's last fused cycle, 8-bit
     Buffer statics_;    // Static: S*tiles scores against them, device memory
-    Buffer scores_readback_;  // scores_ then statics_, copied out after the kernel
-    Buffer indirect_;   // VkDispatchIndirectCommand per fusion dispatch
+    Buffer scores_readback_;  // scores_ then statics_ (or the slots decided on the device), copied out
+    Buffer indirect_;   // VkDispatchIndirectCommand per indirect dispatch
+    // Decided on the device (shaders/skip_decision.glsl has their layout):
+    Buffer host_args_;    // the dispatches' groups and the backgrounds' versions
+    Buffer decision_;     // slots, gathers and the backgrounds each slot holds
+    Buffer scratch_;      // the moved sensors' frames on their way
+    Buffer backgrounds_;  // every sensor's background, planar float32
+    std::vector<std::uint32_t> background_version_;
     std::optional<SparseRegions> sparse_;
     std::optional<DescriptorSets> sets_;
     std::optional<CommandSlot> detect_;
@@ -93,7 +133,14 @@ private:
     std::vector<Image> kept_image_;
     std::vector<Metrics> kept_metrics_;
 
+    static constexpr std::uint32_t kNotFused = 0xffffffffu;  // a slot in `decision_` (skip_decision.glsl)
+
+    void make_device_buffers();
     void record(const Buffer& upload, bool addressed);
+    void record_detection(Recorder& rec, VkCommandBuffer cmd, const DeviceSpan& frames);
+    // The outcomes and slots from the scores (and statics) read back, the
+    // slots given where the device chose them; returns the fused sensors.
+    std::vector<int> decide(const float* scores, const float* still, const std::uint32_t* device_slots);
 };
 
 }  // namespace vkfuse::vk

@@ -102,10 +102,8 @@ void Recorder::begin_dispatch(const std::string& kernel, std::span<const std::ui
     ctx_.api->vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.pipeline(kernel, specialization));
 }
 
-void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
-                        const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
-                        std::span<const std::uint32_t> specialization) {
-    if (gx == 0 || gy == 0 || gz == 0) return;
+void Recorder::prepare_dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                                const PushConstants& scalars, std::span<const std::uint32_t> specialization) {
     // A kernel with more buffers than a stage may bind on this device reaches
     // them by address (the context allows that only with device addresses).
     const bool addressed = addressed_ || buffers.size() > ctx_.bound_buffers;
@@ -125,14 +123,37 @@ void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceS
     check_interface(ctx_, kernel, addressed ? 0 : buffers.size(), push.size());
     if (push.size() > 0)
         api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
+}
+
+void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                        const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
+                        std::span<const std::uint32_t> specialization) {
+    if (gx == 0 || gy == 0 || gz == 0) return;
+    prepare_dispatch(shader, buffers, scalars, specialization);
+    auto& api = *ctx_.api;
     if (!indirect_) {
         api.vkCmdDispatch(cmd_, gx, gy, gz);
         return;
     }
     if (gz % sensors_ != 0 || per_sensor_.size() >= indirect_capacity_)
-        throw Error(ErrorKind::Device, "internal: " + kernel + " cannot be recorded per sensor");
+        throw Error(ErrorKind::Device, "internal: " + shader + " cannot be recorded per sensor");
     api.vkCmdDispatchIndirect(cmd_, indirect_, per_sensor_.size() * sizeof(VkDispatchIndirectCommand));
     per_sensor_.push_back({gx, gy, gz / sensors_});
+}
+
+void Recorder::dispatch_indirect(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                                 const PushConstants& scalars, VkBuffer args, VkDeviceSize offset) {
+    prepare_dispatch(shader, buffers, scalars, {});
+    ctx_.api->vkCmdDispatchIndirect(cmd_, args, offset);
+}
+
+void Recorder::barrier_for_indirect() {
+    barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
+                VK_ACCESS_TRANSFER_READ_BIT);
+    pending_.clear();
+    ++barriers_;
 }
 
 void Recorder::compact_sensors(VkBuffer indirect, std::uint32_t capacity, std::uint32_t sensors) {

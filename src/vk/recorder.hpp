@@ -40,6 +40,14 @@ public:
                   std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
                   std::span<const std::uint32_t> specialization = {});
 
+    // The same with its groups read from `args` at `offset` (a
+    // VkDispatchIndirectCommand a kernel wrote: see barrier_for_indirect).
+    void dispatch_indirect(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                           const PushConstants& scalars, VkBuffer args, VkDeviceSize offset);
+    // Everything the dispatches so far wrote is visible to the later ones,
+    // to indirect dispatches reading their groups, and to transfers.
+    void barrier_for_indirect();
+
     // Sensor-compacting recording (a skipping plan, vk/plan_skip.cpp): from
     // here on every dispatch is recorded as vkCmdDispatchIndirect from the
     // next VkDispatchIndirectCommand of `indirect` (room for `capacity`), and
@@ -87,6 +95,10 @@ private:
     std::string kernel_name(const std::string& shader, bool addressed) const;
     void begin_dispatch(const std::string& kernel, std::span<const std::uint32_t> specialization,
                         std::span<const DeviceSpan> buffers, std::uint32_t written);
+    // Everything of a dispatch but the dispatch itself: the barrier it needs,
+    // its pipeline, buffers and push constants.
+    void prepare_dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                          const PushConstants& scalars, std::span<const std::uint32_t> specialization);
     bool depends_on_pending(std::span<const DeviceSpan> buffers, std::uint32_t written) const;
 };
 

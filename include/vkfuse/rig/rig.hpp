@@ -64,8 +64,9 @@ struct RigConfig {
     // 2: the rig submits cycle c + 1 to the device before it returns cycle c
     // (PlanConfig::cycles_in_flight), so the device fuses c + 1 while the
     // caller handles c; each result then comes one cycle's capture later.
-    // Needs a GPU context and skip off (a skipping plan decides on the host
-    // between detection and fusion). 1: each next() is one round trip.
+    // Needs a GPU context and skip off (a skipping plan keeps its references
+    // and held results once, for 1 cycle in flight). 1: each next() is one
+    // round trip.
     int cycles_in_flight = 1;
 
     // Called on a sensor's capture thread with each setting's background

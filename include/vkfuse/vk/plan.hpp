@@ -56,8 +56,9 @@ struct PlanConfig {
     // Cycles the plan can have on the device at once: 1 or 2. With 2 the plan
     // holds two sets of per-cycle buffers and command buffers (twice the
     // device memory), so the upload and read-back of one cycle overlap the
-    // device's work on the other (Plan::submit). A skipping plan decides on
-    // the host between its change detection and its fusion: it takes 1.
+    // device's work on the other (Plan::submit). A skipping plan takes 1: it
+    // keeps its references and held results once, and under skip static or
+    // tiles its host decides between detection and fusion.
     int cycles_in_flight = 1;
 };
 
@@ -120,8 +121,11 @@ public:
     // At most cycles_in_flight cycles are submitted and not collected:
     // submit() beyond that, collect() with none, or a result read after a
     // submit() throws Error(InvalidArgument). run() collects every cycle
-    // still in flight first (their results are dropped). A skipping plan's
-    // submit() runs its whole cycle (detection, the host's decision, fusion).
+    // still in flight first (their results are dropped). Under skip idle the
+    // device decides which sensors to fuse within the cycle's one submit;
+    // under static or tiles (and for frames whose sensors do not start on
+    // 4-byte boundaries) submit() runs the detection and the host's decision
+    // before it submits the fusion.
     void submit(std::span<const FrameView> frames);
     void collect();
     int in_flight() const;  // cycles submitted and not collected
@@ -135,10 +139,11 @@ public:
     // order, every sensor's work in it (empty before a fusing run).
     std::vector<KernelTime> profile() const;
     SkipOutcome skip_outcome(int sensor) const;  // idle false, fractions 1 when skip is off
-    // Fusion command buffers submitted so far: one per run() or submit(),
-    // whatever the sensor count. A skipping plan submits its change detection first in
-    // every run, and the fusion only when some sensor changed: runs in which
-    // every sensor was idle add none.
+    // Cycles whose fusion was submitted so far: one per run() or submit(),
+    // whatever the sensor count. A skipping plan counts only the cycles in
+    // which some sensor changed: where every sensor was idle it submitted
+    // its change detection alone, or (skip idle) a command buffer whose
+    // fusion dispatched nothing.
     std::uint64_t submits() const;
 
     struct Impl;
