@@ -11,6 +11,7 @@
 #include "progress.hpp"
 #include "run_options.hpp"
 #include "run_output.hpp"
+#include "run_publish.hpp"
 #include "run_sensors.hpp"
 #include "run_stats.hpp"
 #include "staged_directory.hpp"
@@ -53,6 +54,10 @@ constexpr OptionSpec kOptions[] = {
     {"--record", "", "DIR", "record the frames fused (and the background frames) as a dataset (new directory)"},
     {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json (a new directory)"},
     {"--replace", "", "", "let --out name a previous run's directory: replaced whole once this run succeeds"},
+    {"--publish", "", "ros2", "also publish every cycle on ROS 2's wire (DDS): /vkfuse/<serial>/fused, /vkfuse/<serial>/metrics, /vkfuse/rig, /diagnostics (see README, \"Rigs across machines\")"},
+    {"--ros-domain", "", "N", "the ROS 2 domain to publish in, 0..232 (default: ROS_DOMAIN_ID, else 0)"},
+    {"--publish-encoding", "", "E", "fused images as rgb8 (the samples of --out's PNGs) or 32FC3 (float32) (default rgb8)"},
+    {"--publish-wait", "", "SECONDS", "before the first cycle, wait this long at most for subscribers to every sensor's fused and metrics topics (default 0)"},
 };
 
 static_assert(SkipConfig{}.threshold == 8.0, "--skip-threshold's help states the default");
@@ -87,6 +92,7 @@ struct Session {
     std::unique_ptr<StagedDirectory> out_dir, record_dir;
     std::unique_ptr<DatasetWriter> recorder;
     std::unique_ptr<RunOutput> output;
+    std::unique_ptr<RunPublisher> publisher;  // --publish
 };
 
 // The target directories are checked (and their staging directories made)
@@ -174,7 +180,7 @@ RigConfig rig_config(Session& s) {
     cfg.judging = s.sensors.judging;
     cfg.background_frames = o.background_frames;
     cfg.cycle_timeout_s = o.timeout_s;
-    cfg.want_fused = o.out.has_value();
+    cfg.want_fused = o.out.has_value() || o.publish_ros2;
     cfg.skip = o.skip;
     cfg.metrics = o.metrics;
     cfg.watch_when_idle = !o.record;  // a dataset holds every setting of every cycle
@@ -244,6 +250,7 @@ RunStats cycle_loop(Session& s, Rig& rig, const StopSignal& stop) {
         if (s.dataset) report_as_recorded(cycle, *s.dataset);
         const auto write_start = std::chrono::steady_clock::now();
         if (s.output) s.output->write(cycle);
+        if (s.publisher) s.publisher->publish(cycle);
         if (s.recorder) record_cycle(*s.recorder, cycle, s.options);
         stats.add(cycle, std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count());
         if (stats.fused() == 0 && rig.all_failed()) break;  // the run fails with the sensors' error alone
@@ -295,7 +302,9 @@ int run(const Args& args) {
     }
     Rig rig(context ? &*context : nullptr, rig_config(s), s.sensors.rig);
     open_outputs(s);
+    s.publisher = RunPublisher::make(s.options, s.sensors.rig);
     rig.start();
+    if (s.publisher) s.publisher->wait_for_subscribers();
     const RunStats stats = cycle_loop(s, rig, stop);
     const std::string summary = stats.summary_json(rig);
     require_results(s, stats, stop.requested());

@@ -8,7 +8,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libgtest-dev libvulkan-dev libvulkan1
-          mesa-vulkan-drivers vulkan-validationlayers glslang-tools pybind11-dev python3-dev)
+          mesa-vulkan-drivers vulkan-validationlayers glslang-tools pybind11-dev python3-dev
+          cyclonedds-dev cyclonedds-tools)  # Cyclone DDS: `vkfuse run --publish ros2`
+
+# What the ros2 tests read vkfuse's topics with: Fast DDS, the other DDS ROS 2 ships.
+ROS2_TEST_PACKAGES=(libfastrtps-dev libfastcdr-dev)
 
 # What the Python module's tests need: pytest and the peers it is checked against.
 PYTHON_TEST_PACKAGES=(python3-pytest python3-numpy python3-pywt python3-opencv)
@@ -91,7 +95,8 @@ run_tests() {
 
 case "${1:-}" in
     run) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build vkfuse_cli; run_main_job ;;
-    test) install_missing "${PACKAGES[@]}" "${PYTHON_TEST_PACKAGES[@]}" "${HIL_PACKAGES[@]}"; lavapipe_from_backports
+    test) install_missing "${PACKAGES[@]}" "${PYTHON_TEST_PACKAGES[@]}" "${ROS2_TEST_PACKAGES[@]}" "${HIL_PACKAGES[@]}"
+          lavapipe_from_backports
           build; run_tests ;;
     bench) install_missing "${PACKAGES[@]}" "${PEER_PACKAGES[@]}"; lavapipe_from_backports; build vkfuse-bench
            ./build/bench/vkfuse-bench --json bench.json ;;

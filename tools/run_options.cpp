@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "fusion_options.hpp"
@@ -14,6 +15,12 @@ namespace vkfuse::cli {
 namespace {
 
 [[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::InvalidArgument, message); }
+
+#ifdef VKFUSE_WITH_ROS2
+constexpr bool kBuiltWithRos2 = true;
+#else
+constexpr bool kBuiltWithRos2 = false;
+#endif
 
 std::string format_seconds(double s) {
     char text[32];
@@ -63,6 +70,39 @@ void metric_options(const Args& args, RunOptions& o) {
     if (asked->has(Metric::BackgroundDiff) && !background)
         fail("--metrics " + *v + ": background_diff needs a background (--background-frames of at least 1)");
     o.metrics = *asked;
+}
+
+// --publish and what goes with it. A vkfuse built without Cyclone DDS
+// refuses --publish ros2 with one line.
+void publish_options(const Args& args, RunOptions& o) {
+    const std::optional<std::string> publish = args.value("--publish");
+    if (!publish) {
+        for (const char* option : {"--ros-domain", "--publish-encoding", "--publish-wait"})
+            if (args.has(option)) args.usage_error(std::string(option) + " needs --publish ros2");
+        return;
+    }
+    if (*publish != "ros2") fail("--publish " + *publish + ": expected ros2");
+    if (!kBuiltWithRos2)
+        fail("--publish ros2: this vkfuse was built without ROS 2 support (Cyclone DDS: apt-get install "
+             "cyclonedds-dev cyclonedds-tools, then build again)");
+    o.publish_ros2 = true;
+    const std::optional<std::string> domain = args.value("--ros-domain");
+    const char* environment = std::getenv("ROS_DOMAIN_ID");
+    const std::string text = domain ? *domain : environment ? environment : "";
+    if (!domain && text.empty()) {
+        o.ros_domain = 0;
+    } else if (const std::optional<int> d = ros2::parse_domain(text)) {
+        o.ros_domain = *d;
+    } else {
+        fail(std::string(domain ? "--ros-domain " : "ROS_DOMAIN_ID=") + text.substr(0, 32) + ": expected a domain 0.." +
+             std::to_string(ros2::kMaxDomain));
+    }
+    if (auto v = args.value("--publish-encoding")) {
+        const std::optional<ros2::ImageEncoding> e = ros2::parse_image_encoding(*v);
+        if (!e) fail("--publish-encoding " + *v + ": expected rgb8 or 32FC3");
+        o.publish_encoding = *e;
+    }
+    if (auto v = args.value("--publish-wait")) o.publish_wait_s = parse_seconds("--publish-wait", *v);
 }
 
 }  // namespace
@@ -136,6 +176,7 @@ RunOptions parse_run_options(const Args& args) {
     }
     o.timeout_s = o.virtual_clock || o.replay ? kSimulatedTimeoutSeconds : kLiveTimeoutSeconds;
     if (auto v = args.value("--timeout")) o.timeout_s = parse_seconds("--timeout", *v);
+    publish_options(args, o);
     return o;
 }
 

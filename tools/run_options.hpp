@@ -11,6 +11,7 @@
 #include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/sensor/digit_sensor.hpp"
 #include "vkfuse/rig/rig.hpp"
+#include "vkfuse/ros2/publisher.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
@@ -55,6 +56,12 @@ struct RunOptions {
     int cycles_in_flight = 1;     // --cycles-in-flight (RigConfig::cycles_in_flight)
     std::optional<int> pressing;  // simulated DIGITs: how many press the object (the first N), default all
     double timeout_s = kLiveTimeoutSeconds;
+    // --publish ros2: every cycle on ROS 2's wire too (run_publish.hpp), in
+    // domain --ros-domain, else ROS_DOMAIN_ID, else 0.
+    bool publish_ros2 = false;
+    int ros_domain = 0;
+    ros2::ImageEncoding publish_encoding = ros2::ImageEncoding::Rgb8;  // --publish-encoding
+    double publish_wait_s = 0;  // --publish-wait: for subscribers before the first cycle
 };
 
 inline constexpr const char* kDefaultSequence = "15,15,15+0,15,0";

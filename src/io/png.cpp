@@ -280,14 +280,14 @@ private:
     PngInfo info_;
 };
 
-std::vector<unsigned char> quantize(const Image& image) {
+}  // namespace
+
+std::vector<unsigned char> to_8bit(const Image& image) {
     std::vector<unsigned char> out(image.size());
     std::transform(image.data.begin(), image.data.end(), out.begin(),
                    [](float v) { return static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0)); });
     return out;
 }
-
-}  // namespace
 
 Image decode_png(const std::vector<unsigned char>& file, const std::string& path) {
     return PngReader(file.data(), file.size(), nullptr, path).image();
@@ -308,7 +308,7 @@ ImageHeader read_png_header(InputFile& file) {
 Image read_png(InputFile& file) { return PngReader(nullptr, file.size(), &file, file.path()).image(); }
 
 void write_png(std::FILE* out, const Image& image, const std::string& path) {
-    std::vector<unsigned char> pixels = quantize(image);
+    std::vector<unsigned char> pixels = to_8bit(image);
     PngInfo shape;
     shape.width = png_uint_32(image.width);
     shape.height = png_uint_32(image.height);

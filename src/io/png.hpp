@@ -25,8 +25,12 @@ Image decode_png(const std::vector<unsigned char>& file, const std::string& path
 ImageHeader read_png_header(InputFile& file);
 Image read_png(InputFile& file);
 
-// Writes image (C = 1 or 3, finite) as an 8-bit gray or RGB PNG, each value
-// clamped to [0, 1] and rounded: round(v * 255). Throws Error naming path.
+// Writes image (C = 1 or 3, finite) as an 8-bit gray or RGB PNG: to_8bit's
+// samples. Throws Error naming path.
 void write_png(std::FILE* out, const Image& image, const std::string& path);
+
+// An image's samples as 8-bit PNGs (and rgb8 ROS images) hold them: each
+// value clamped to [0, 1] and rounded, round(v * 255).
+std::vector<unsigned char> to_8bit(const Image& image);
 
 }  // namespace vkfuse::io

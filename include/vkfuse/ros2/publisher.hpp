@@ -1,0 +1,115 @@
+// vkfuse/ros2/publisher.hpp - a rig's cycles on ROS 2's wire: a DDS
+// participant (Cyclone DDS) that speaks ROS 2's names and types, so every
+// ROS 2 node on the network subscribes to it as to any ROS 2 publisher, with
+// no ROS installed here. Built as vkfuse::ros2 where Cyclone DDS is found;
+// the other libraries never depend on it. The topics (docs/ros2.md):
+//
+//   /vkfuse/<token>/fused     sensor_msgs/msg/Image (rgb8, or 32FC3); the last 3 kept
+//   /vkfuse/<token>/metrics   vkfuse_msgs/msg/FusionMetrics; the last 20 kept
+//   /vkfuse/rig               vkfuse_msgs/msg/RigDescription; the last one kept
+//   /diagnostics              diagnostic_msgs/msg/DiagnosticArray, once a second
+//
+// All reliable; the topics that keep samples are transient local, so a
+// subscriber that asks for it gets them when it joins (a volatile one, ROS
+// 2's default, matches too).
+//
+// The message definitions ship as a ROS 2 interface package (ros2/vkfuse_msgs).
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vkfuse/core/fusion.hpp"
+#include "vkfuse/core/metrics.hpp"
+#include "vkfuse/core/skip.hpp"
+#include "vkfuse/rig/rig.hpp"
+#include "vkfuse/sensor/sensor.hpp"
+
+namespace vkfuse::ros2 {
+
+// How fused images travel: rgb8 holds the samples a PNG of --out holds
+// (round(clamp(v, 0, 1) * 255)); 32FC3 the float32 samples themselves.
+enum class ImageEncoding { Rgb8, Float32 };
+inline std::string_view to_string(ImageEncoding encoding) { return encoding == ImageEncoding::Rgb8 ? "rgb8" : "32FC3"; }
+inline std::optional<ImageEncoding> parse_image_encoding(std::string_view name) {
+    for (ImageEncoding e : {ImageEncoding::Rgb8, ImageEncoding::Float32})
+        if (to_string(e) == name) return e;
+    return std::nullopt;
+}
+
+// DDS domains whose ports fit the RTPS port formula (7400 + 250 d + ...).
+inline constexpr int kMaxDomain = 232;
+// A domain as ROS_DOMAIN_ID or an option spells it: 0..kMaxDomain, else
+// nullopt. (Header-only, so a program built without vkfuse::ros2 checks
+// its options the same way.)
+inline std::optional<int> parse_domain(std::string_view text) {
+    if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string_view::npos)
+        return std::nullopt;
+    const int d = std::stoi(std::string(text));
+    return d <= kMaxDomain ? std::optional<int>(d) : std::nullopt;
+}
+
+// A serial as one token of a ROS 2 name, which allows letters, digits and
+// underscores and no leading digit: every other character becomes '_', and
+// a leading digit gets "sensor_" before it ("SIM-0001" -> "SIM_0001",
+// "2023.7" -> "sensor_2023_7"). The messages carry the serial itself.
+std::string topic_token(std::string_view serial);
+
+// What /vkfuse/rig describes, and what the topics are named after.
+struct RigTopics {
+    std::vector<SensorInfo> sensors;  // serials unique, and their tokens too
+    IlluminationSequence sequence;
+    FusionSpec fusion;
+    MetricSet metrics;
+    SkipConfig skip;
+};
+
+struct PublisherOptions {
+    int domain = 0;
+    ImageEncoding encoding = ImageEncoding::Rgb8;
+};
+
+// Samples the publisher handed to DDS, and those DDS refused (a writer that
+// stayed blocked on a reliable subscriber past its time, or out of resources).
+struct PublisherCounts {
+    std::uint64_t written = 0;
+    std::uint64_t dropped = 0;
+};
+
+class RigPublisher {
+public:
+    // Joins the domain and creates every topic's writer; publishes
+    // /vkfuse/rig at once. Throws Error(InvalidArgument) for two sensors
+    // whose serials share a token, Error(Device) naming what DDS refused.
+    RigPublisher(const RigTopics& rig, const PublisherOptions& options);
+    ~RigPublisher();
+    RigPublisher(const RigPublisher&) = delete;
+    RigPublisher& operator=(const RigPublisher&) = delete;
+
+    // One cycle: each sensor's metrics, and its fused image where the cycle
+    // has one; /diagnostics when a second passed since it was last sent.
+    // captured[i]: sensor i's capture time on the system clock (header.stamp).
+    void publish(const CycleResult& cycle, std::span<const std::chrono::system_clock::time_point> captured);
+
+    // Subscribers currently matched to sensor's fused or metrics topic, or to
+    // /diagnostics: what a caller may wait for before its first cycle.
+    int fused_subscribers(std::size_t sensor) const;
+    int metrics_subscribers(std::size_t sensor) const;
+    PublisherCounts counts() const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// "wavelet/bior4.4", "laplacian": the fusion as /vkfuse/rig and every
+// FusionMetrics name it.
+std::string method_label(const FusionSpec& fusion);
+
+}  // namespace vkfuse::ros2

@@ -1,0 +1,54 @@
+#include "ros2/dds_entities.hpp"
+
+#include "vkfuse/core/error.hpp"
+
+namespace vkfuse::ros2 {
+
+DdsEntity::DdsEntity(dds_entity_t entity, const std::string& what) {
+    if (entity < 0) throw Error(ErrorKind::Device, what + ": " + dds_strretcode(entity));
+    entity_ = entity;
+}
+
+DdsEntity::~DdsEntity() {
+    if (entity_ > 0) dds_delete(entity_);
+}
+
+DdsEntity& DdsEntity::operator=(DdsEntity&& other) noexcept {
+    if (this != &other) {
+        if (entity_ > 0) dds_delete(entity_);
+        entity_ = other.entity_;
+        other.entity_ = 0;
+    }
+    return *this;
+}
+
+TopicQos::TopicQos(int depth, bool latched) : qos_(dds_create_qos()) {
+    dds_qset_reliability(qos_, DDS_RELIABILITY_RELIABLE, kMaxBlocking);
+    dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, depth);
+    dds_qset_durability(qos_, latched ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
+    if (latched)
+        dds_qset_durability_service(qos_, 0, DDS_HISTORY_KEEP_LAST, depth, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED,
+                                    DDS_LENGTH_UNLIMITED);
+    // ROS 2 readers take plain CDR only, and samples are never disposed.
+    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+    dds_qset_data_representation(qos_, 1, &xcdr1);
+    dds_qset_writer_data_lifecycle(qos_, false);
+}
+
+TopicQos::~TopicQos() { dds_delete_qos(qos_); }
+
+DdsEntity make_writer(const DdsEntity& participant, const dds_topic_descriptor_t& type, const std::string& ros_name,
+                      const TopicQos& qos) {
+    const std::string dds_name = "rt" + ros_name;
+    // The topic belongs to the participant, which deletes it with its writers.
+    const dds_entity_t topic = dds_create_topic(participant.get(), &type, dds_name.c_str(), nullptr, nullptr);
+    if (topic < 0) throw Error(ErrorKind::Device, "DDS topic " + dds_name + ": " + dds_strretcode(topic));
+    return DdsEntity(dds_create_writer(participant.get(), topic, qos.get(), nullptr), "DDS writer of " + dds_name);
+}
+
+int matched_subscribers(const DdsEntity& writer) {
+    dds_publication_matched_status_t status{};
+    return dds_get_publication_matched_status(writer.get(), &status) == DDS_RETCODE_OK ? int(status.current_count) : 0;
+}
+
+}  // namespace vkfuse::ros2

@@ -1,0 +1,292 @@
+// RigPublisher (vkfuse/ros2/publisher.hpp): a rig's cycles as ROS 2 messages,
+// written through Cyclone DDS with the C types idlc generates from
+// ros2/idl/*.idl and ros2/vkfuse_msgs/msg/*.msg (src/CMakeLists.txt). The
+// messages point into the cycle's own data; DDS serializes them in dds_write.
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "diagnostic_msgs.h"
+#include "io/png.hpp"
+#include "ros2/dds_entities.hpp"
+#include "sensor_msgs.h"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/ros2/publisher.hpp"
+#include "vkfuse_msgs.h"
+
+namespace vkfuse::ros2 {
+namespace {
+
+// History depths. Fused images and metrics are transient local: a
+// subscriber gets the last cycles the moment it matches, even one that
+// matched the instant the first cycle went out (discovery completes on the
+// two sides at different times). Images are large, so only three of each
+// sensor are kept (a 32FC3 VGA image is 3.7 MB); /vkfuse/rig keeps its one
+// description. A volatile subscriber (ROS 2's default) matches them all.
+constexpr int kImageDepth = 3, kMetricsDepth = 20, kDiagnosticsDepth = 10, kRigDepth = 1;
+constexpr auto kDiagnosticsPeriod = std::chrono::seconds(1);
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+builtin_interfaces_msg_dds__Time_ stamp_of(std::chrono::system_clock::time_point t) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+    const auto sec = ns >= 0 ? ns / 1000000000 : (ns - 999999999) / 1000000000;
+    return {std::int32_t(sec), std::uint32_t(ns - sec * 1000000000)};
+}
+
+// DDS's C types take char*; dds_write only reads through it.
+char* text(const std::string& s) { return const_cast<char*>(s.c_str()); }
+
+template <class Sequence, class T>
+Sequence sequence_of(std::vector<T>& items) {
+    Sequence s{};
+    s._maximum = s._length = std::uint32_t(items.size());
+    s._buffer = items.empty() ? nullptr : items.data();
+    s._release = false;
+    return s;
+}
+
+// A setting's levels as LedSetting's, and the message pointing at them.
+struct LedSettings {
+    std::vector<std::vector<std::uint8_t>> levels;
+    std::vector<vkfuse_msgs_msg_dds__LedSetting_> messages;
+
+    explicit LedSettings(const IlluminationSequence& sequence) {
+        for (const Illumination& s : sequence) levels.emplace_back(s.levels().begin(), s.levels().end());
+        for (auto& l : levels) messages.push_back({sequence_of<dds_sequence_uint8>(l)});
+    }
+};
+
+std::string status_text(const SensorCycle& s) {
+    switch (s.status) {
+        case SensorStatus::Ok: return "ok";
+        case SensorStatus::Timeout: return "late: no new frames within the cycle timeout";
+        case SensorStatus::Failed: return s.error;
+    }
+    return "";
+}
+
+std::uint8_t metrics_status(SensorStatus s) {
+    switch (s) {
+        case SensorStatus::Ok: return vkfuse_msgs_msg_dds__FusionMetrics_Constants_STATUS_OK;
+        case SensorStatus::Timeout: return vkfuse_msgs_msg_dds__FusionMetrics_Constants_STATUS_TIMEOUT;
+        case SensorStatus::Failed: return vkfuse_msgs_msg_dds__FusionMetrics_Constants_STATUS_FAILED;
+    }
+    return vkfuse_msgs_msg_dds__FusionMetrics_Constants_STATUS_FAILED;
+}
+
+}  // namespace
+
+struct RigPublisher::Impl {
+    RigTopics rig;
+    PublisherOptions options;
+    std::vector<std::string> tokens;
+    std::string method;
+    LedSettings settings;
+    DdsEntity participant;
+    std::vector<DdsEntity> fused, metrics;
+    DdsEntity diagnostics, description;
+    std::optional<std::chrono::steady_clock::time_point> diagnosed;
+    std::vector<SensorCycle> latest;  // each sensor's last cycle, without frames: for /diagnostics
+    std::vector<std::uint64_t> latest_cycle;
+    PublisherCounts counts;
+
+    Impl(const RigTopics& r, const PublisherOptions& o)
+        : rig(r), options(o), method(method_label(r.fusion)), settings(r.sequence) {
+        std::map<std::string, std::string> serial_of;
+        for (const SensorInfo& s : rig.sensors) {
+            const std::string token = topic_token(s.serial);
+            if (auto [it, fresh] = serial_of.emplace(token, s.serial); !fresh)
+                throw Error(ErrorKind::InvalidArgument, "--publish ros2: serials " + it->second + " and " + s.serial +
+                                                            " both name topics /vkfuse/" + token);
+            tokens.push_back(token);
+        }
+        if (options.domain < 0 || options.domain > kMaxDomain)
+            throw Error(ErrorKind::InvalidArgument, "ROS domain " + std::to_string(options.domain) + ": expected 0.." +
+                                                        std::to_string(kMaxDomain));
+        participant = DdsEntity(dds_create_participant(dds_domainid_t(options.domain), nullptr, nullptr),
+                                "DDS participant in domain " + std::to_string(options.domain));
+        const TopicQos image_qos(kImageDepth, true), metrics_qos(kMetricsDepth, true),
+            diagnostics_qos(kDiagnosticsDepth, false), rig_qos(kRigDepth, true);
+        for (const std::string& token : tokens) {
+            fused.push_back(make_writer(participant, sensor_msgs_msg_dds__Image__desc, "/vkfuse/" + token + "/fused", image_qos));
+            metrics.push_back(make_writer(participant, vkfuse_msgs_msg_dds__FusionMetrics__desc,
+                                          "/vkfuse/" + token + "/metrics", metrics_qos));
+        }
+        diagnostics = make_writer(participant, diagnostic_msgs_msg_dds__DiagnosticArray__desc, "/diagnostics", diagnostics_qos);
+        description = make_writer(participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig", rig_qos);
+        latest.resize(rig.sensors.size());
+        latest_cycle.assign(rig.sensors.size(), 0);
+        describe_rig();
+    }
+
+    void write(const DdsEntity& writer, const void* sample) {
+        if (dds_write(writer.get(), sample) == DDS_RETCODE_OK)
+            ++counts.written;
+        else
+            ++counts.dropped;
+    }
+
+    void describe_rig() {
+        std::vector<std::vector<char*>> channels;
+        std::vector<vkfuse_msgs_msg_dds__SensorDescription_> sensors;
+        for (std::size_t i = 0; i < rig.sensors.size(); ++i) {
+            SensorInfo& s = rig.sensors[i];
+            channels.emplace_back();
+            for (const std::string& name : s.leds.names) channels.back().push_back(text(name));
+        }
+        for (std::size_t i = 0; i < rig.sensors.size(); ++i) {
+            SensorInfo& s = rig.sensors[i];
+            sensors.push_back({text(s.serial), text(tokens[i]), std::uint32_t(s.width), std::uint32_t(s.height),
+                               text(s.leds.model), sequence_of<dds_sequence_string>(channels[i]),
+                               std::uint16_t(s.leds.max_level)});
+        }
+        std::vector<std::string> metric_names;
+        for (Metric m : kAllMetrics)
+            if (rig.metrics.has(m)) metric_names.emplace_back(to_string(m));
+        std::vector<char*> metric_texts;
+        for (const std::string& m : metric_names) metric_texts.push_back(text(m));
+        const std::string skip(to_string(rig.skip.policy));
+        vkfuse_msgs_msg_dds__RigDescription_ msg{};
+        const std::string none;
+        msg.header = {stamp_of(std::chrono::system_clock::now()), text(none)};
+        msg.sensors = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__SensorDescription_>(sensors);
+        msg.settings = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LedSetting_>(settings.messages);
+        msg.method = text(method);
+        msg.metrics = sequence_of<dds_sequence_string>(metric_texts);
+        msg.skip = text(skip);
+        msg.skip_threshold = rig.skip.threshold;
+        write(description, &msg);
+    }
+
+    void publish_fused(std::size_t i, const SensorCycle& s, const builtin_interfaces_msg_dds__Time_& stamp) {
+        const Image& image = *s.fused;
+        std::vector<std::uint8_t> bytes;
+        if (options.encoding == ImageEncoding::Rgb8) {
+            bytes = io::to_8bit(image);
+        } else {
+            bytes.resize(image.data.size() * sizeof(float));
+            std::memcpy(bytes.data(), image.data.data(), bytes.size());
+        }
+        const std::string encoding(to_string(options.encoding));
+        sensor_msgs_msg_dds__Image_ msg{};
+        msg.header = {stamp, text(s.serial)};
+        msg.height = std::uint32_t(image.height);
+        msg.width = std::uint32_t(image.width);
+        msg.encoding = text(encoding);
+        msg.is_bigendian = std::endian::native == std::endian::big;
+        msg.step = std::uint32_t(bytes.size() / std::size_t(image.height));
+        msg.data = sequence_of<dds_sequence_uint8>(bytes);
+        write(fused[i], &msg);
+    }
+
+    void publish_metrics(std::size_t i, std::uint64_t cycle, const SensorCycle& s,
+                         const builtin_interfaces_msg_dds__Time_& stamp) {
+        const bool ok = s.status == SensorStatus::Ok;
+        std::vector<vkfuse_msgs_msg_dds__LedSetting_> lit;
+        if (ok)
+            lit.assign(settings.messages.begin(),
+                       settings.messages.begin() + std::ptrdiff_t(std::min(s.frames.size(), settings.messages.size())));
+        vkfuse_msgs_msg_dds__FusionMetrics_ msg{};
+        msg.header = {stamp, text(s.serial)};
+        msg.serial = text(s.serial);
+        msg.cycle = cycle;
+        msg.status = metrics_status(s.status);
+        msg.error = text(s.error);
+        msg.method = text(method);
+        msg.settings = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LedSetting_>(lit);
+        msg.sharpness = ok ? s.metrics.sharpness : kNaN;
+        msg.contrast = ok ? s.metrics.contrast : kNaN;
+        msg.background_diff = ok && s.metrics.background_diff ? *s.metrics.background_diff : kNaN;
+        msg.idle = ok && s.skip.idle;
+        msg.reused = ok && s.skip.reused;
+        msg.watch = ok && s.watch;
+        msg.fused_fraction = ok ? s.skip.fused_fraction : 0;
+        msg.changed_fraction = ok ? s.skip.changed_fraction : 0;
+        msg.change_score = ok ? s.skip.score : 0;
+        write(metrics[i], &msg);
+    }
+
+    // One status per sensor, as stock ROS 2 tools (rqt_robot_monitor,
+    // Foxglove's diagnostics panel) show them: level, name, message, values.
+    void publish_diagnostics() {
+        constexpr std::uint8_t kOk = 0, kWarn = 1, kError = 2;
+        std::vector<std::string> names, messages, cycles;
+        std::vector<std::vector<diagnostic_msgs_msg_dds__KeyValue_>> values(latest.size());
+        const std::string cycle_key = "cycle", status_key = "status", idle_key = "idle";
+        std::vector<std::string> statuses, idles;
+        for (std::size_t i = 0; i < latest.size(); ++i) {
+            names.push_back("vkfuse: " + rig.sensors[i].serial);
+            messages.push_back(status_text(latest[i]));
+            cycles.push_back(std::to_string(latest_cycle[i]));
+            statuses.emplace_back(to_string(latest[i].status));
+            idles.push_back(latest[i].skip.idle ? "true" : "false");
+        }
+        std::vector<diagnostic_msgs_msg_dds__DiagnosticStatus_> status;
+        for (std::size_t i = 0; i < latest.size(); ++i) {
+            values[i] = {{text(cycle_key), text(cycles[i])}, {text(status_key), text(statuses[i])},
+                         {text(idle_key), text(idles[i])}};
+            const std::uint8_t level = latest[i].status == SensorStatus::Ok        ? kOk
+                                       : latest[i].status == SensorStatus::Timeout ? kWarn
+                                                                                   : kError;
+            status.push_back({level, text(names[i]), text(messages[i]), text(rig.sensors[i].serial),
+                              sequence_of<dds_sequence_diagnostic_msgs_msg_dds__KeyValue_>(values[i])});
+        }
+        const std::string none;
+        diagnostic_msgs_msg_dds__DiagnosticArray_ msg{};
+        msg.header = {stamp_of(std::chrono::system_clock::now()), text(none)};
+        msg.status = sequence_of<dds_sequence_diagnostic_msgs_msg_dds__DiagnosticStatus_>(status);
+        write(diagnostics, &msg);
+    }
+};
+
+RigPublisher::RigPublisher(const RigTopics& rig, const PublisherOptions& options)
+    : impl_(std::make_unique<Impl>(rig, options)) {}
+
+// Subscribers still receiving the last cycles (a large image goes in many
+// fragments) get them before the participant leaves: at most kLinger in all.
+RigPublisher::~RigPublisher() {
+    constexpr auto kLinger = std::chrono::seconds(2);
+    const auto deadline = std::chrono::steady_clock::now() + kLinger;
+    std::vector<const DdsEntity*> writers{&impl_->diagnostics};
+    for (const DdsEntity& w : impl_->fused) writers.push_back(&w);
+    for (const DdsEntity& w : impl_->metrics) writers.push_back(&w);
+    for (const DdsEntity* w : writers) {
+        const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0 || dds_wait_for_acks(w->get(), left.count()) == DDS_RETCODE_TIMEOUT) break;
+    }
+}
+
+void RigPublisher::publish(const CycleResult& cycle, std::span<const std::chrono::system_clock::time_point> captured) {
+    Impl& im = *impl_;
+    if (cycle.sensors.size() != im.tokens.size() || captured.size() != im.tokens.size())
+        throw Error(ErrorKind::InvalidArgument, "ros2 publisher: a cycle of " + std::to_string(cycle.sensors.size()) +
+                                                    " sensors and " + std::to_string(captured.size()) +
+                                                    " capture times for a rig of " + std::to_string(im.tokens.size()));
+    for (std::size_t i = 0; i < cycle.sensors.size(); ++i) {
+        const SensorCycle& s = cycle.sensors[i];
+        const auto stamp = stamp_of(captured[i]);
+        if (s.status == SensorStatus::Ok && s.fused) im.publish_fused(i, s, stamp);
+        im.publish_metrics(i, cycle.cycle, s, stamp);
+        im.latest[i].status = s.status;
+        im.latest[i].error = s.error;
+        im.latest[i].skip = s.skip;
+        im.latest_cycle[i] = cycle.cycle;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (!im.diagnosed || now - *im.diagnosed >= kDiagnosticsPeriod) {
+        im.publish_diagnostics();
+        im.diagnosed = now;
+    }
+}
+
+int RigPublisher::fused_subscribers(std::size_t sensor) const { return matched_subscribers(impl_->fused.at(sensor)); }
+int RigPublisher::metrics_subscribers(std::size_t sensor) const {
+    return matched_subscribers(impl_->metrics.at(sensor));
+}
+PublisherCounts RigPublisher::counts() const { return impl_->counts; }
+
+}  // namespace vkfuse::ros2
