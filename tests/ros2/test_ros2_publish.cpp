@@ -38,9 +38,10 @@ using ros2::RigDescriptionMessage;
 const std::vector<std::string> kSerials = {"SIM-0001", "SIM-0002"}, kTokens = {"SIM_0001", "SIM_0002"};
 constexpr int kCycles = 6;
 
-// A domain of this test program's own: test programs running at once on one
-// host (ctest -j) never hear each other.
-int own_domain() { return 100 + int(getpid() % 100); }
+// A domain of this test process's own, so that another publishing test on
+// the host is unlikely to share it (ctest also runs the ros2 tests one at a
+// time: RESOURCE_LOCK in tests/CMakeLists.txt).
+int own_domain() { return 10 + int(getpid() % 220); }
 
 std::string fused_topic(std::size_t i) { return "/vkfuse/" + kTokens[i] + "/fused"; }
 std::string metrics_topic(std::size_t i) { return "/vkfuse/" + kTokens[i] + "/metrics"; }
