@@ -40,6 +40,12 @@ builtin_interfaces_msg_dds__Time_ stamp_of(std::chrono::system_clock::time_point
 // DDS's C types take char*; dds_write only reads through it.
 char* text(const std::string& s) { return const_cast<char*>(s.c_str()); }
 
+// The header of a message about the whole rig: stamped now, no frame.
+std_msgs_msg_dds__Header_ rig_header() {
+    static const std::string none;
+    return {stamp_of(std::chrono::system_clock::now()), text(none)};
+}
+
 template <class Sequence, class T>
 Sequence sequence_of(std::vector<T>& items) {
     Sequence s{};
@@ -90,8 +96,6 @@ struct RigPublisher::Impl {
     std::vector<DdsEntity> fused, metrics;
     DdsEntity diagnostics, description;
     std::optional<std::chrono::steady_clock::time_point> diagnosed;
-    std::vector<SensorCycle> latest;  // each sensor's last cycle, without frames: for /diagnostics
-    std::vector<std::uint64_t> latest_cycle;
     PublisherCounts counts;
 
     Impl(const RigTopics& r, const PublisherOptions& o)
@@ -118,8 +122,6 @@ struct RigPublisher::Impl {
         }
         diagnostics = make_writer(participant, diagnostic_msgs_msg_dds__DiagnosticArray__desc, "/diagnostics", diagnostics_qos);
         description = make_writer(participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig", rig_qos);
-        latest.resize(rig.sensors.size());
-        latest_cycle.assign(rig.sensors.size(), 0);
         describe_rig();
     }
 
@@ -151,8 +153,7 @@ struct RigPublisher::Impl {
         for (const std::string& m : metric_names) metric_texts.push_back(text(m));
         const std::string skip(to_string(rig.skip.policy));
         vkfuse_msgs_msg_dds__RigDescription_ msg{};
-        const std::string none;
-        msg.header = {stamp_of(std::chrono::system_clock::now()), text(none)};
+        msg.header = rig_header();
         msg.sensors = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__SensorDescription_>(sensors);
         msg.settings = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LedSetting_>(settings.messages);
         msg.method = text(method);
@@ -210,34 +211,34 @@ struct RigPublisher::Impl {
         write(metrics[i], &msg);
     }
 
-    // One status per sensor, as stock ROS 2 tools (rqt_robot_monitor,
-    // Foxglove's diagnostics panel) show them: level, name, message, values.
-    void publish_diagnostics() {
+    // One status per sensor from this cycle, as stock ROS 2 tools
+    // (rqt_robot_monitor, Foxglove's diagnostics panel) show them: level,
+    // name, message, values.
+    void publish_diagnostics(const CycleResult& cycle) {
         constexpr std::uint8_t kOk = 0, kWarn = 1, kError = 2;
-        std::vector<std::string> names, messages, cycles;
-        std::vector<std::vector<diagnostic_msgs_msg_dds__KeyValue_>> values(latest.size());
+        const std::size_t n = cycle.sensors.size();
+        // The strings first, the messages pointing into them after: no
+        // pointer is taken while a vector of strings still grows.
+        std::vector<std::string> names, messages, statuses;
         const std::string cycle_key = "cycle", status_key = "status", idle_key = "idle";
-        std::vector<std::string> statuses, idles;
-        for (std::size_t i = 0; i < latest.size(); ++i) {
-            names.push_back("vkfuse: " + rig.sensors[i].serial);
-            messages.push_back(status_text(latest[i]));
-            cycles.push_back(std::to_string(latest_cycle[i]));
-            statuses.emplace_back(to_string(latest[i].status));
-            idles.push_back(latest[i].skip.idle ? "true" : "false");
+        const std::string cycle_number = std::to_string(cycle.cycle), yes = "true", no = "false";
+        for (const SensorCycle& s : cycle.sensors) {
+            names.push_back("vkfuse: " + s.serial);
+            messages.push_back(status_text(s));
+            statuses.emplace_back(to_string(s.status));
         }
+        std::vector<std::vector<diagnostic_msgs_msg_dds__KeyValue_>> values(n);
         std::vector<diagnostic_msgs_msg_dds__DiagnosticStatus_> status;
-        for (std::size_t i = 0; i < latest.size(); ++i) {
-            values[i] = {{text(cycle_key), text(cycles[i])}, {text(status_key), text(statuses[i])},
-                         {text(idle_key), text(idles[i])}};
-            const std::uint8_t level = latest[i].status == SensorStatus::Ok        ? kOk
-                                       : latest[i].status == SensorStatus::Timeout ? kWarn
-                                                                                   : kError;
+        for (std::size_t i = 0; i < n; ++i) {
+            const SensorCycle& s = cycle.sensors[i];
+            values[i] = {{text(cycle_key), text(cycle_number)}, {text(status_key), text(statuses[i])},
+                         {text(idle_key), text(s.skip.idle ? yes : no)}};
+            const std::uint8_t level = s.status == SensorStatus::Ok ? kOk : s.status == SensorStatus::Timeout ? kWarn : kError;
             status.push_back({level, text(names[i]), text(messages[i]), text(rig.sensors[i].serial),
                               sequence_of<dds_sequence_diagnostic_msgs_msg_dds__KeyValue_>(values[i])});
         }
-        const std::string none;
         diagnostic_msgs_msg_dds__DiagnosticArray_ msg{};
-        msg.header = {stamp_of(std::chrono::system_clock::now()), text(none)};
+        msg.header = rig_header();
         msg.status = sequence_of<dds_sequence_diagnostic_msgs_msg_dds__DiagnosticStatus_>(status);
         write(diagnostics, &msg);
     }
@@ -271,14 +272,10 @@ void RigPublisher::publish(const CycleResult& cycle, std::span<const std::chrono
         const auto stamp = stamp_of(captured[i]);
         if (s.status == SensorStatus::Ok && s.fused) im.publish_fused(i, s, stamp);
         im.publish_metrics(i, cycle.cycle, s, stamp);
-        im.latest[i].status = s.status;
-        im.latest[i].error = s.error;
-        im.latest[i].skip = s.skip;
-        im.latest_cycle[i] = cycle.cycle;
     }
     const auto now = std::chrono::steady_clock::now();
     if (!im.diagnosed || now - *im.diagnosed >= kDiagnosticsPeriod) {
-        im.publish_diagnostics();
+        im.publish_diagnostics(cycle);
         im.diagnosed = now;
     }
 }

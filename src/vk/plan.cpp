@@ -117,10 +117,9 @@ Plan::Impl::Impl(Context::Impl& context, const PlanConfig& config, vk::PlanKind 
         ctx.adapted("frames in imported host memory are copied into device-local memory before each cycle");
     }
     // A skipping plan that decides on the device fills its slots' backgrounds there.
-    const bool skip_on_device = cfg.skip.policy != SkipPolicy::Off && vk::skip_decides_on_device(cfg);
     if (cfg.metrics.has(Metric::BackgroundDiff))
         background = vk::Buffer(ctx, sensor_floats * cfg.sensors * 4,
-                                skip_on_device ? vk::MemoryUse::Device : vk::MemoryUse::Upload);
+                                vk::skip_decides_on_device(cfg) ? vk::MemoryUse::Device : vk::MemoryUse::Upload);
     const std::size_t S = std::size_t(cfg.sensors);
     if (cfg.input == PixelType::F32 && brovey()) {
         thresholds = vk::Buffer(ctx, S * 4, vk::MemoryUse::Upload);

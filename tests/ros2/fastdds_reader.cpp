@@ -31,20 +31,20 @@ void ImageMessage::read(Cdr& c) {
 
 namespace {
 
-std::vector<std::vector<std::uint8_t>> read_settings(Cdr& c) {
+// A CDR sequence: its count, then each element as read_one reads it.
+template <class T, class ReadOne>
+std::vector<T> read_sequence(Cdr& c, ReadOne read_one) {
     std::uint32_t n = 0;
     c >> n;
-    std::vector<std::vector<std::uint8_t>> settings(n);
-    for (auto& s : settings) c >> s;
-    return settings;
+    std::vector<T> out(n);
+    for (T& item : out) read_one(item);
+    return out;
 }
 
-std::vector<std::string> read_strings(Cdr& c) {
-    std::uint32_t n = 0;
-    c >> n;
-    std::vector<std::string> out(n);
-    for (auto& s : out) c >> s;
-    return out;
+// Elements Fast-CDR reads itself (a string, a uint8 sequence: a LedSetting).
+template <class T>
+std::vector<T> read_sequence(Cdr& c) {
+    return read_sequence<T>(c, [&](T& item) { c >> item; });
 }
 
 }  // namespace
@@ -52,39 +52,30 @@ std::vector<std::string> read_strings(Cdr& c) {
 void FusionMetricsMessage::read(Cdr& c) {
     header.read(c);
     c >> serial >> cycle >> status >> error >> method;
-    settings = read_settings(c);
+    settings = read_sequence<std::vector<std::uint8_t>>(c);
     c >> sharpness >> contrast >> background_diff >> idle >> reused >> watch >> fused_fraction >> changed_fraction >>
         change_score;
 }
 
 void RigDescriptionMessage::read(Cdr& c) {
     header.read(c);
-    std::uint32_t n = 0;
-    c >> n;
-    sensors.resize(n);
-    for (Sensor& s : sensors) {
+    sensors = read_sequence<Sensor>(c, [&](Sensor& s) {
         c >> s.serial >> s.token >> s.width >> s.height >> s.led_model;
-        s.led_channels = read_strings(c);
+        s.led_channels = read_sequence<std::string>(c);
         c >> s.led_max_level;
-    }
-    settings = read_settings(c);
+    });
+    settings = read_sequence<std::vector<std::uint8_t>>(c);
     c >> method;
-    metrics = read_strings(c);
+    metrics = read_sequence<std::string>(c);
     c >> skip >> skip_threshold;
 }
 
 void DiagnosticArrayMessage::read(Cdr& c) {
     header.read(c);
-    std::uint32_t n = 0;
-    c >> n;
-    status.resize(n);
-    for (Status& s : status) {
+    status = read_sequence<Status>(c, [&](Status& s) {
         c >> s.level >> s.name >> s.message >> s.hardware_id;
-        std::uint32_t values = 0;
-        c >> values;
-        s.values.resize(values);
-        for (auto& [key, value] : s.values) c >> key >> value;
-    }
+        s.values = read_sequence<std::pair<std::string, std::string>>(c, [&](auto& kv) { c >> kv.first >> kv.second; });
+    });
 }
 
 struct Ros2Reader::Impl {

@@ -58,10 +58,10 @@ void subscribe_all(ros2::Ros2Reader& reader) {
 
 // Two simulated DIGITs, kCycles cycles, published; the run waits for the
 // subscriber, so that no cycle goes out before it listens.
-CliResult publish_run(int domain, const std::string& out, const std::string& encoding) {
-    return run_cli({"run", "--sensors", "2", "--cycles", std::to_string(kCycles), "--virtual-clock", "--publish", "ros2",
-                    "--ros-domain", std::to_string(domain), "--publish-wait", "60", "--publish-encoding", encoding,
-                    "--out", out});
+std::vector<std::string> publish_args(int domain, const std::string& out, const std::string& encoding) {
+    return {"run", "--sensors", "2", "--cycles", std::to_string(kCycles), "--virtual-clock", "--publish", "ros2",
+            "--ros-domain", std::to_string(domain), "--publish-wait", "60", "--publish-encoding", encoding,
+            "--out", out};
 }
 
 std::string arrived(const ros2::Ros2Reader& reader) {
@@ -115,7 +115,7 @@ TEST(Ros2Publish, FastDdsReadsEveryFusedImageAndMetricOfTheRun) {
     TempDir dir;
     const std::string out = dir.file("out");
     const auto before = std::chrono::system_clock::now();
-    const CliResult r = publish_run(domain, out, "rgb8");
+    const CliResult r = run_cli(publish_args(domain, out, "rgb8"));
     ASSERT_EQ(r.status, 0) << r.err;
     ASSERT_TRUE(reader.wait([&] { return all_arrived(reader); }, std::chrono::seconds(30))) << arrived(reader);
     const auto after = std::chrono::system_clock::now();
@@ -192,10 +192,7 @@ TEST(Ros2Publish, TheRigIsLatchedAndFloatImagesAreTheFusedSamples) {
     TempDir dir;
     const std::string out = dir.file("out");
     std::optional<ros2::Ros2Reader> late;
-    const pid_t pid = start_cli({"run", "--sensors", "2", "--cycles", std::to_string(kCycles), "--virtual-clock",
-                                 "--publish", "ros2", "--ros-domain", std::to_string(domain), "--publish-wait", "60",
-                                 "--publish-encoding", "32FC3", "--out", out},
-                                dir.file("stdout"), dir.file("stderr"));
+    const pid_t pid = start_cli(publish_args(domain, out, "32FC3"), dir.file("stdout"), dir.file("stderr"));
     // Once the run publishes, a second reader subscribes to the rig alone.
     ASSERT_TRUE(reader.wait([&] { return !reader.samples<FusionMetricsMessage>(metrics_topic(0)).empty(); },
                             std::chrono::seconds(120)));
