@@ -57,7 +57,11 @@ constexpr OptionSpec kOptions[] = {
     {"--publish", "", "ros2", "also publish every cycle on ROS 2's wire (DDS): /vkfuse/<serial>/fused, /vkfuse/<serial>/metrics, /vkfuse/rig, /diagnostics (see README, \"Rigs across machines\")"},
     {"--ros-domain", "", "N", "the ROS 2 domain to publish in, 0..232 (default: ROS_DOMAIN_ID, else 0)"},
     {"--publish-encoding", "", "E", "fused images as rgb8 (the samples of --out's PNGs) or 32FC3 (float32) (default rgb8)"},
-    {"--publish-wait", "", "SECONDS", "before the first cycle, wait this long at most for subscribers to every sensor's fused and metrics topics (default 0)"},
+    {"--publish-wait", "", "SECONDS", "before the first cycle, wait this long at most for subscribers to every topic each sensor publishes per cycle (default 0)"},
+    {"--publish-frames", "", "", "with --publish ros2: also each sensor's cycles (/vkfuse/<serial>/cycle) and background (/vkfuse/<serial>/background), for a fusion host (--source ros2)"},
+    {"--capture-only", "", "", "a capture host: capture and publish (--publish ros2 --publish-frames) or record the cycles, fuse nothing (no Vulkan device needed)"},
+    {"--source", "", "ros2", "fuse the sensors a capture host publishes on ROS 2's wire (in --ros-domain) instead of local ones; --sensor SERIAL picks some (default: every sensor of the first capture host heard)"},
+    {"--startup-timeout", "", "SECONDS", "how long the start waits for sensors to calibrate and take their backgrounds, and with --source ros2 for the capture host (default 60)"},
 };
 
 static_assert(SkipConfig{}.threshold == 8.0, "--skip-threshold's help states the default");
@@ -157,7 +161,9 @@ Session prepare(const Args& args) {
     Session s;
     s.options = parse_run_options(args);
     stage_outputs(s, args);
-    if (s.options.replay) {
+    if (s.options.source_ros2) {
+        s.sensors = remote_sensors(s.options, args);
+    } else if (s.options.replay) {
         s.dataset = std::make_shared<const Dataset>(read_dataset(*s.options.replay));
         adopt_recording(s.options, args, *s.dataset);
         require_replay_memory(s.options, *s.dataset);
@@ -180,6 +186,8 @@ RigConfig rig_config(Session& s) {
     cfg.judging = s.sensors.judging;
     cfg.background_frames = o.background_frames;
     cfg.cycle_timeout_s = o.timeout_s;
+    cfg.startup_timeout_s = o.startup_timeout_s;
+    cfg.fuse = !o.capture_only;
     cfg.want_fused = o.out.has_value() || o.publish_ros2;
     cfg.skip = o.skip;
     cfg.metrics = o.metrics;
@@ -187,10 +195,12 @@ RigConfig rig_config(Session& s) {
     cfg.cycles_in_flight = o.cycles_in_flight;
     // The recorder is made once the rig has accepted the configuration (no
     // directory for a run that cannot start); the callback finds it then.
-    if (o.record)
-        cfg.on_background = [&rec = s.recorder](std::size_t i, const Illumination& setting,
-                                                const std::vector<Frame>& frames) {
-            for (const Frame& f : frames) rec->add_frame(int(i), "nothing", true, f, setting);
+    if (o.record || o.publish_frames)
+        cfg.on_background = [&rec = s.recorder, &pub = s.publisher](std::size_t i, const Illumination& setting,
+                                                                  const std::vector<Frame>& frames) {
+            if (rec)
+                for (const Frame& f : frames) rec->add_frame(int(i), "nothing", true, f, setting);
+            if (pub) pub->publish_background(i, setting, frames);
         };
     if (!s.sensors.sims.empty() && o.background_frames > 0)
         cfg.after_background = [sims = s.sensors.sims, object = o.object,
@@ -294,7 +304,8 @@ int run(const Args& args) {
     // First, so a signal at any point ends the run the orderly way.
     StopSignal stop;
     Session s = prepare(args);
-    std::optional<Context> context = open_backend(s.options.backend);
+    // A capture host fuses nothing: no device is opened.
+    std::optional<Context> context = s.options.capture_only ? std::nullopt : open_backend(s.options.backend);
     if (!context && s.options.cycles_in_flight != 1) {
         std::fprintf(stderr, "vkfuse run: --cycles-in-flight %d: the CPU path fuses each cycle as it is taken; 1 cycle in flight\n",
                      s.options.cycles_in_flight);

@@ -72,20 +72,42 @@ void metric_options(const Args& args, RunOptions& o) {
     o.metrics = *asked;
 }
 
-// --publish and what goes with it. A vkfuse built without Cyclone DDS
-// refuses --publish ros2 with one line.
-void publish_options(const Args& args, RunOptions& o) {
-    const std::optional<std::string> publish = args.value("--publish");
-    if (!publish) {
-        for (const char* option : {"--ros-domain", "--publish-encoding", "--publish-wait"})
-            if (args.has(option)) args.usage_error(std::string(option) + " needs --publish ros2");
-        return;
-    }
-    if (*publish != "ros2") fail("--publish " + *publish + ": expected ros2");
+void require_ros2(const std::string& option) {
     if (!kBuiltWithRos2)
-        fail("--publish ros2: this vkfuse was built without ROS 2 support (Cyclone DDS: apt-get install "
-             "cyclonedds-dev cyclonedds-tools, then build again)");
-    o.publish_ros2 = true;
+        fail(option + ": this vkfuse was built without ROS 2 support (Cyclone DDS: apt-get install "
+                      "cyclonedds-dev cyclonedds-tools, then build again)");
+}
+
+// --source ros2: the sensors are another host's; what it decides is not
+// for the command line here.
+void source_options(const Args& args, RunOptions& o) {
+    const std::optional<std::string> source = args.value("--source");
+    if (!source) return;
+    if (*source != "ros2") fail("--source " + *source + ": expected ros2");
+    require_ros2("--source ros2");
+    for (const char* option : kSimulatorOptions)
+        if (args.has(option)) args.usage_error(std::string(option) + " does not apply to --source ros2 (its sensors are another host's)");
+    for (const char* option : {"--replay", "--sequence", "--background-frames", "--encoding", "--config"})
+        if (args.has(option))
+            args.usage_error(std::string(option) + " does not apply to --source ros2 (the capture host decides)");
+    for (const char* option : {"--capture-only", "--publish-frames"})
+        if (args.has(option))
+            args.usage_error(std::string(option) + " does not apply to --source ros2 (the capture host publishes the frames)");
+    o.source_ros2 = true;
+}
+
+// --capture-only: a capture host, whose cycles go somewhere whole.
+void capture_only_options(const Args& args, const RunOptions& o) {
+    if (!o.capture_only) return;
+    if (!o.publish_frames && !o.record)
+        args.usage_error("--capture-only: needs --publish ros2 --publish-frames or --record (the cycles would go nowhere)");
+    if (o.out) args.usage_error("--capture-only: --out holds fused images, and nothing is fused");
+    for (const char* option : {"--skip", "--skip-threshold", "--metrics", "--cycles-in-flight", "--publish-encoding"})
+        if (args.has(option)) args.usage_error(std::string(option) + " does not apply to --capture-only (nothing is fused)");
+}
+
+// The ROS 2 domain: --ros-domain, else ROS_DOMAIN_ID, else 0.
+void domain_option(const Args& args, RunOptions& o) {
     const std::optional<std::string> domain = args.value("--ros-domain");
     const char* environment = std::getenv("ROS_DOMAIN_ID");
     const std::string text = domain ? *domain : environment ? environment : "";
@@ -97,6 +119,24 @@ void publish_options(const Args& args, RunOptions& o) {
         fail(std::string(domain ? "--ros-domain " : "ROS_DOMAIN_ID=") + text.substr(0, 32) + ": expected a domain 0.." +
              std::to_string(ros2::kMaxDomain));
     }
+}
+
+// --publish and what goes with it. A vkfuse built without Cyclone DDS
+// refuses --publish ros2 with one line.
+void publish_options(const Args& args, RunOptions& o) {
+    const std::optional<std::string> publish = args.value("--publish");
+    if (!publish) {
+        for (const char* option : {"--publish-encoding", "--publish-wait", "--publish-frames"})
+            if (args.has(option)) args.usage_error(std::string(option) + " needs --publish ros2");
+        if (args.has("--ros-domain") && !o.source_ros2) args.usage_error("--ros-domain needs --publish ros2 or --source ros2");
+        if (o.source_ros2) domain_option(args, o);
+        return;
+    }
+    if (*publish != "ros2") fail("--publish " + *publish + ": expected ros2");
+    require_ros2("--publish ros2");
+    o.publish_ros2 = true;
+    domain_option(args, o);
+    o.publish_frames = args.has("--publish-frames");
     if (auto v = args.value("--publish-encoding")) {
         const std::optional<ros2::ImageEncoding> e = ros2::parse_image_encoding(*v);
         if (!e) fail("--publish-encoding " + *v + ": expected rgb8 or 32FC3");
@@ -108,7 +148,8 @@ void publish_options(const Args& args, RunOptions& o) {
 }  // namespace
 
 void background_options(const Args& args, RunOptions& o) {
-    o.skip.policy = o.background_frames >= 2 ? SkipPolicy::Tiles : SkipPolicy::Off;
+    // A capture host skips nothing: its fusion host decides.
+    o.skip.policy = o.background_frames >= 2 && !o.capture_only ? SkipPolicy::Tiles : SkipPolicy::Off;
     if (auto v = args.value("--skip")) {
         const std::optional<SkipPolicy> p = parse_skip_policy(*v);
         if (!p) fail("--skip " + *v + ": expected off, idle, static or tiles");
@@ -133,17 +174,19 @@ void background_options(const Args& args, RunOptions& o) {
 RunOptions parse_run_options(const Args& args) {
     if (!args.operands().empty()) args.usage_error("unexpected operand " + args.operands().front());
     RunOptions o;
+    source_options(args, o);
+    o.capture_only = args.has("--capture-only");
     o.replay = args.value("--replay");
     if (o.replay) check_replay_conflicts(args);
     o.digits = args.values("--sensor");
-    if (!o.digits.empty()) check_digit_conflicts(args);
+    if (!o.digits.empty() && !o.source_ros2) check_digit_conflicts(args);
     for (const char* option : kSimulatorOptions) o.simulate = o.simulate || args.has(option);
     if (auto v = args.value("--encoding")) o.encoding = parse_digit_encoding(*v, "--encoding");
     if (auto v = args.value("--sensors")) o.sensors = parse_positive_int("--sensors", *v);
     if (o.sensors > kMaxSimulatedSensors)
         fail("--sensors " + std::to_string(o.sensors) + ": at most " + std::to_string(kMaxSimulatedSensors));
     if (auto v = args.value("--object")) o.object = *v;
-    if (!o.replay) check_sim_object("--object " + o.object, o.object);
+    if (!o.replay && !o.source_ros2) check_sim_object("--object " + o.object, o.object);
     if (auto v = args.value("--motion")) o.motion = parse_sim_motion(*v);
     if (auto v = args.value("--motion-period")) {
         o.motion_period_s = parse_seconds("--motion-period", *v);
@@ -176,8 +219,19 @@ RunOptions parse_run_options(const Args& args) {
     }
     o.timeout_s = o.virtual_clock || o.replay ? kSimulatedTimeoutSeconds : kLiveTimeoutSeconds;
     if (auto v = args.value("--timeout")) o.timeout_s = parse_seconds("--timeout", *v);
+    if (auto v = args.value("--startup-timeout")) o.startup_timeout_s = parse_seconds("--startup-timeout", *v);
     publish_options(args, o);
+    capture_only_options(args, o);
     return o;
+}
+
+void adopt_remote(RunOptions& o, const Args& args, const IlluminationSequence& sequence, int background_frames,
+                  int sensors) {
+    o.sequence = sequence;
+    o.background_frames = background_frames;
+    o.sensors = sensors;
+    if (!args.has("--object")) o.object = "live";  // a label only, as for real DIGITs
+    background_options(args, o);  // the capture host's background decides whether skipping can be on
 }
 
 void adopt_recording(RunOptions& o, const Args& args, const Dataset& d) {

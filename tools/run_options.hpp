@@ -62,6 +62,14 @@ struct RunOptions {
     int ros_domain = 0;
     ros2::ImageEncoding publish_encoding = ros2::ImageEncoding::Rgb8;  // --publish-encoding
     double publish_wait_s = 0;  // --publish-wait: for subscribers before the first cycle
+    bool publish_frames = false;  // --publish-frames: each sensor's cycles and background too
+    // --capture-only: a capture host: cycles are captured and published or
+    // recorded, never fused (no Vulkan device is opened).
+    bool capture_only = false;
+    // --source ros2: the sensors are a capture host's, heard in ros_domain
+    // (the serials: digits, from --sensor; empty: the first host's).
+    bool source_ros2 = false;
+    double startup_timeout_s = 60;  // --startup-timeout (RigConfig::startup_timeout_s)
 };
 
 inline constexpr const char* kDefaultSequence = "15,15,15+0,15,0";
@@ -74,6 +82,11 @@ RunOptions parse_run_options(const Args& args);
 // What depends on the background (o.background_frames, known by now):
 // --skip, --skip-threshold, --cycles-in-flight and --metrics into o.
 void background_options(const Args& args, RunOptions& o);
+
+// With --source ros2: the capture hosts' sequence and background count, and
+// the sensors' count.
+void adopt_remote(RunOptions& options, const Args& args, const IlluminationSequence& sequence, int background_frames,
+                  int sensors);
 
 // With --replay: the recorded sequence, fusion and background count wherever
 // the command line did not set them, and the recorded object when it named

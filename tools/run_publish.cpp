@@ -22,37 +22,38 @@ public:
         topics.fusion = o.fusion;
         topics.metrics = o.metrics;
         topics.skip = o.skip;
-        publisher_.emplace(topics, ros2::PublisherOptions{o.ros_domain, o.publish_encoding});
+        topics.background_frames = o.background_frames;
+        topics.fused = !o.capture_only;
+        // A frame's capture time on the system clock: its age on the
+        // sensor's own clock, before now (a sensor without a clock: now).
+        ros2::CaptureTime capture_time = [clocks = sensors](std::size_t i, double timestamp) {
+            const auto now = std::chrono::system_clock::now();
+            if (i >= clocks.size() || !clocks[i].clock) return now;
+            const double age = std::max(0.0, clocks[i].clock->now() - timestamp);
+            return now - std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(age));
+        };
+        publisher_.emplace(topics, ros2::PublisherOptions{o.ros_domain, o.publish_encoding, o.publish_frames},
+                           std::move(capture_time));
     }
 
     void wait_for_subscribers() override {
         const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_s_);
         for (;;) {
             bool all = true;
-            for (std::size_t i = 0; i < sensors_.size() && all; ++i)
-                all = publisher_->metrics_subscribers(i) > 0 && publisher_->fused_subscribers(i) > 0;
+            for (std::size_t i = 0; i < sensors_.size() && all; ++i) all = publisher_->has_subscribers(i);
             if (all) return;
             if (std::chrono::steady_clock::now() >= deadline) break;
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
         }
         if (wait_s_ > 0)
-            std::fprintf(stderr, "vkfuse run: --publish-wait %g: not every sensor's fused and metrics topics have a subscriber; "
+            std::fprintf(stderr, "vkfuse run: --publish-wait %g: not every sensor's topics have a subscriber; "
                                  "publishing anyway\n", wait_s_);
     }
 
-    // header.stamp: when the cycle's first frame was exposed, on the system
-    // clock: its age on the sensor's own clock, before now.
-    void publish(const CycleResult& cycle) override {
-        const auto now = std::chrono::system_clock::now();
-        std::vector<std::chrono::system_clock::time_point> captured(cycle.sensors.size(), now);
-        for (std::size_t i = 0; i < cycle.sensors.size() && i < sensors_.size(); ++i) {
-            const SensorCycle& s = cycle.sensors[i];
-            if (s.status != SensorStatus::Ok || s.frames.empty() || !sensors_[i].clock) continue;
-            const double age = std::max(0.0, sensors_[i].clock->now() - s.frames.front().timestamp);
-            captured[i] = now - std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                                    std::chrono::duration<double>(age));
-        }
-        publisher_->publish(cycle, captured);
+    void publish(const CycleResult& cycle) override { publisher_->publish(cycle); }
+
+    void publish_background(std::size_t sensor, const Illumination& setting, const std::vector<Frame>& frames) override {
+        publisher_->publish_background(sensor, setting, frames);
     }
 
 private:

@@ -17,11 +17,14 @@ public:
     // subscribers find it while the rig starts.
     static std::unique_ptr<RunPublisher> make(const RunOptions& o, const std::vector<RigSensor>& sensors);
     virtual ~RunPublisher() = default;
-    // Before the first cycle: waits until every sensor's fused and metrics
-    // topics have a subscriber, or --publish-wait's seconds pass (one line
+    // Before the first cycle: waits until every topic each sensor publishes
+    // per cycle has a subscriber, or --publish-wait's seconds pass (one line
     // then says so).
     virtual void wait_for_subscribers() = 0;
     virtual void publish(const CycleResult& cycle) = 0;
+    // A sensor's background frames of one setting (RigConfig::on_background):
+    // published with --publish-frames once all its settings are in.
+    virtual void publish_background(std::size_t sensor, const Illumination& setting, const std::vector<Frame>& frames) = 0;
 };
 
 }  // namespace vkfuse::cli

@@ -7,6 +7,7 @@
 
 #include "run_options.hpp"
 #include "vkfuse/rig/rig.hpp"
+#include "vkfuse/ros2/remote.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::cli {
@@ -16,6 +17,7 @@ struct RunSensors {
     std::vector<std::shared_ptr<SimDigit>> sims;  // empty when replaying
     FrameJudging judging = FrameJudging::Timing;
     std::optional<std::size_t> recorded_cycles;  // replay: full cycles every sensor holds
+    std::shared_ptr<ros2::RemoteRig> remote;     // --source ros2: where the frames come from
 };
 
 // N simulated DIGITs, serials SIM-0001.., seeds 1.., with nothing pressed yet
@@ -36,6 +38,11 @@ std::vector<std::string> plugged_digits();
 
 // One DatasetSensor per recorded sensor, playing options.object.
 RunSensors replayed_sensors(const RunOptions& options, std::shared_ptr<const Dataset> dataset);
+
+// --source ros2: the sensors of capture hosts in o.ros_domain (o.digits by
+// serial, else the first host's), once their descriptions are heard (at most
+// o.startup_timeout_s); their sequence and background count adopted into o.
+RunSensors remote_sensors(RunOptions& o, const Args& args);
 
 // A replayed sensor that delivered nothing in a cycle in which the recorded
 // run also got nothing from it gets the recorded status and message, so the

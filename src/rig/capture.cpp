@@ -56,10 +56,10 @@ bool capture_background(const CaptureJob& job, Switcher& switcher, std::vector<I
         Image mean;
         const bool ran = guarded(*job.hub, [&] {
             if (cfg.on_background) cfg.on_background(job.index, setting, frames);
-            mean = job.hub->average(views);
+            if (cfg.fuse) mean = job.hub->average(views);
         });
         if (!ran) return false;
-        Image deviation = skipping ? background_deviation(views, mean) : Image();
+        Image deviation = skipping && cfg.fuse ? background_deviation(views, mean) : Image();
         means.emplace(setting.to_string(), std::pair(mean, deviation));
         out.push_back(std::move(mean));
         if (skipping) deviations.push_back(std::move(deviation));

@@ -42,6 +42,9 @@ void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors, c
                                                     " needs at least 2 background frames per setting");
     for (const RigSensor& s : sensors)
         if (!s.sensor) throw Error(ErrorKind::InvalidArgument, "rig: null sensor");
+    if (!cfg.fuse && cfg.skip.policy != SkipPolicy::Off)
+        throw Error(ErrorKind::InvalidArgument, "rig: skip " + std::string(to_string(cfg.skip.policy)) +
+                                                    " needs fusion on (a rig that fuses nothing has nothing to skip)");
     if (cfg.cycles_in_flight != 1 && cfg.cycles_in_flight != 2)
         throw Error(ErrorKind::InvalidArgument, "rig: cycles_in_flight must be 1 or 2, got " +
                                                     std::to_string(cfg.cycles_in_flight));
@@ -68,7 +71,7 @@ struct Rig::Impl {
     std::shared_ptr<rig::Hub> hub = std::make_shared<rig::Hub>();
     std::vector<std::thread> threads;
     int height = 0, width = 0;
-    std::unique_ptr<rig::Engine> engine;     // one submit per cycle for all sensors
+    std::unique_ptr<rig::Engine> engine;     // one submit per cycle for all sensors; null: fusion off
     std::unique_ptr<rig::Engine> bg_engine;  // fuses background means the way frames are fused
     std::vector<std::vector<Frame>> last_good;
     std::vector<bool> lagging;  // timed out and not delivered since: not waited for
@@ -119,8 +122,8 @@ Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
         }
         hub->slots[i].serial = info.serial;
     }
-    engine = rig::make_engine(context, plan_config(PixelType::U8, true));
-    if (cfg->background_frames > 0) {
+    if (cfg->fuse) engine = rig::make_engine(context, plan_config(PixelType::U8, true));
+    if (engine && cfg->background_frames > 0) {
         const Image zero(height, width, 3);  // until a sensor's own background is in
         const SkipReference black{std::vector<Image>(cfg->sequence.size(), zero),
                                   std::vector<Image>(cfg->sequence.size(), zero)};
@@ -188,7 +191,7 @@ void Rig::Impl::apply_new_backgrounds() {
             any = true;
         }
     }
-    if (!any) return;
+    if (!any || !engine) return;
     if (!bg_engine) bg_engine = rig::make_engine(context, plan_config(PixelType::F32, false));
     const Image zero(height, width, 3);
     std::vector<FrameView> views;
@@ -338,15 +341,16 @@ CycleResult Rig::Impl::start_cycle() {
     const auto fuse_start = WallClock::now();
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         const bool ok = result.sensors[i].status == SensorStatus::Ok;
-        if (ok) last_good[i] = result.sensors[i].frames;
+        if (ok && engine) last_good[i] = result.sensors[i].frames;  // what a late sensor's slot is fused from
         lagging[i] = !ok && !replayed[i];
     }
-    engine->submit(views_for(result.sensors));
+    if (engine) engine->submit(views_for(result.sensors));
     result.fuse_s = seconds_since(fuse_start);
     return result;
 }
 
 void Rig::Impl::report(CycleResult& result) {
+    if (!engine) return;  // fusion off: the frames are the result
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         SensorCycle& r = result.sensors[i];
         if (r.status != SensorStatus::Ok) continue;
@@ -382,11 +386,11 @@ void Rig::Impl::report(CycleResult& result) {
 CycleResult Rig::next() {
     auto& im = *impl_;
     if (!im.started) throw Error(ErrorKind::InvalidArgument, "rig: next() before start()");
-    if (im.engine->cycles_in_flight() > 1 && !im.ahead) im.ahead = im.start_cycle();
+    if (im.engine && im.engine->cycles_in_flight() > 1 && !im.ahead) im.ahead = im.start_cycle();
     CycleResult result = im.ahead ? std::move(*im.ahead) : im.start_cycle();
     if (im.ahead) im.ahead = im.start_cycle();
     const auto collect_start = WallClock::now();
-    im.engine->collect();
+    if (im.engine) im.engine->collect();
     result.fuse_s += seconds_since(collect_start);
     im.report(result);
     return result;
@@ -413,9 +417,9 @@ bool Rig::all_failed() const {
     return true;
 }
 
-std::uint64_t Rig::submits() const { return impl_->engine->submits(); }
+std::uint64_t Rig::submits() const { return impl_->engine ? impl_->engine->submits() : 0; }
 
-int Rig::cycles_in_flight() const { return impl_->engine->cycles_in_flight(); }
+int Rig::cycles_in_flight() const { return impl_->engine ? impl_->engine->cycles_in_flight() : 1; }
 
 std::string_view to_string(SensorStatus status) {
     switch (status) {

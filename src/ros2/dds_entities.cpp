@@ -1,6 +1,7 @@
 #include "ros2/dds_entities.hpp"
 
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/ros2/publisher.hpp"
 
 namespace vkfuse::ros2 {
 
@@ -33,17 +34,49 @@ TopicQos::TopicQos(int depth, bool latched) : qos_(dds_create_qos()) {
     const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
     dds_qset_data_representation(qos_, 1, &xcdr1);
     dds_qset_writer_data_lifecycle(qos_, false);
+    // Asserted by the participant itself (no call of ours), so a subscriber
+    // loses us within the lease however this process ends; a ROS 2
+    // subscriber asks for an infinite lease, which this one satisfies.
+    dds_qset_liveliness(qos_, DDS_LIVELINESS_AUTOMATIC, DDS_MSECS(kLivelinessLease.count()));
 }
 
-TopicQos::~TopicQos() { dds_delete_qos(qos_); }
+TopicQos TopicQos::reader(int depth) {
+    TopicQos q;
+    dds_qset_reliability(q.qos_, DDS_RELIABILITY_RELIABLE, kMaxBlocking);
+    dds_qset_history(q.qos_, DDS_HISTORY_KEEP_LAST, depth);
+    dds_qset_durability(q.qos_, DDS_DURABILITY_TRANSIENT_LOCAL);
+    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+    dds_qset_data_representation(q.qos_, 1, &xcdr1);
+    return q;
+}
+
+TopicQos::~TopicQos() {
+    if (qos_) dds_delete_qos(qos_);
+}
+
+namespace {
+
+// The topic belongs to the participant, which deletes it with its readers and writers.
+dds_entity_t topic_of(const DdsEntity& participant, const dds_topic_descriptor_t& type, const std::string& dds_name) {
+    const dds_entity_t topic = dds_create_topic(participant.get(), &type, dds_name.c_str(), nullptr, nullptr);
+    if (topic < 0) throw Error(ErrorKind::Device, "DDS topic " + dds_name + ": " + dds_strretcode(topic));
+    return topic;
+}
+
+}  // namespace
 
 DdsEntity make_writer(const DdsEntity& participant, const dds_topic_descriptor_t& type, const std::string& ros_name,
                       const TopicQos& qos) {
     const std::string dds_name = "rt" + ros_name;
-    // The topic belongs to the participant, which deletes it with its writers.
-    const dds_entity_t topic = dds_create_topic(participant.get(), &type, dds_name.c_str(), nullptr, nullptr);
-    if (topic < 0) throw Error(ErrorKind::Device, "DDS topic " + dds_name + ": " + dds_strretcode(topic));
-    return DdsEntity(dds_create_writer(participant.get(), topic, qos.get(), nullptr), "DDS writer of " + dds_name);
+    return DdsEntity(dds_create_writer(participant.get(), topic_of(participant, type, dds_name), qos.get(), nullptr),
+                     "DDS writer of " + dds_name);
+}
+
+DdsEntity make_reader(const DdsEntity& participant, const dds_topic_descriptor_t& type, const std::string& ros_name,
+                      const TopicQos& qos) {
+    const std::string dds_name = "rt" + ros_name;
+    return DdsEntity(dds_create_reader(participant.get(), topic_of(participant, type, dds_name), qos.get(), nullptr),
+                     "DDS reader of " + dds_name);
 }
 
 int matched_subscribers(const DdsEntity& writer) {

@@ -38,18 +38,27 @@ inline constexpr dds_duration_t kMaxBlocking = DDS_MSECS(100);
 class TopicQos {
 public:
     TopicQos(int depth, bool latched);
+    // A reader's: reliable, keep last `depth`, transient local (it takes
+    // what latched writers keep; volatile writers match too).
+    static TopicQos reader(int depth);
     ~TopicQos();
+    TopicQos(TopicQos&& other) noexcept : qos_(other.qos_) { other.qos_ = nullptr; }
     TopicQos(const TopicQos&) = delete;
     TopicQos& operator=(const TopicQos&) = delete;
     const dds_qos_t* get() const { return qos_; }
 
 private:
+    TopicQos() : qos_(dds_create_qos()) {}
     dds_qos_t* qos_;
 };
 
 // A writer of `type` on ROS 2 topic `ros_name` ("/vkfuse/rig" -> DDS topic
 // "rt/vkfuse/rig") in participant.
 DdsEntity make_writer(const DdsEntity& participant, const dds_topic_descriptor_t& type, const std::string& ros_name,
+                      const TopicQos& qos);
+
+// A reader of `type` on ROS 2 topic `ros_name`.
+DdsEntity make_reader(const DdsEntity& participant, const dds_topic_descriptor_t& type, const std::string& ros_name,
                       const TopicQos& qos);
 
 // Subscribers matched to writer (0 where DDS cannot say).

@@ -2,21 +2,22 @@
 // written through Cyclone DDS with the C types idlc generates from
 // ros2/idl/*.idl and ros2/vkfuse_msgs/msg/*.msg (src/CMakeLists.txt). The
 // messages point into the cycle's own data; DDS serializes them in dds_write.
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "diagnostic_msgs.h"
 #include "io/png.hpp"
 #include "ros2/dds_entities.hpp"
-#include "sensor_msgs.h"
+#include "ros2/messages.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/ros2/publisher.hpp"
-#include "vkfuse_msgs.h"
 
 namespace vkfuse::ros2 {
 namespace {
@@ -28,43 +29,17 @@ namespace {
 // sensor are kept (a 32FC3 VGA image is 3.7 MB); /vkfuse/rig keeps its one
 // description. A volatile subscriber (ROS 2's default) matches them all.
 constexpr int kImageDepth = 3, kMetricsDepth = 20, kDiagnosticsDepth = 10, kRigDepth = 1;
+// Cycles as images; a fusion host that joins takes the last few at once.
+// Each sensor's one background.
+constexpr int kCycleDepth = 3, kBackgroundDepth = 1;
 constexpr auto kDiagnosticsPeriod = std::chrono::seconds(1);
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-builtin_interfaces_msg_dds__Time_ stamp_of(std::chrono::system_clock::time_point t) {
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
-    const auto sec = ns >= 0 ? ns / 1000000000 : (ns - 999999999) / 1000000000;
-    return {std::int32_t(sec), std::uint32_t(ns - sec * 1000000000)};
-}
-
-// DDS's C types take char*; dds_write only reads through it.
-char* text(const std::string& s) { return const_cast<char*>(s.c_str()); }
 
 // The header of a message about the whole rig: stamped now, no frame.
 std_msgs_msg_dds__Header_ rig_header() {
     static const std::string none;
     return {stamp_of(std::chrono::system_clock::now()), text(none)};
 }
-
-template <class Sequence, class T>
-Sequence sequence_of(std::vector<T>& items) {
-    Sequence s{};
-    s._maximum = s._length = std::uint32_t(items.size());
-    s._buffer = items.empty() ? nullptr : items.data();
-    s._release = false;
-    return s;
-}
-
-// A setting's levels as LedSetting's, and the message pointing at them.
-struct LedSettings {
-    std::vector<std::vector<std::uint8_t>> levels;
-    std::vector<vkfuse_msgs_msg_dds__LedSetting_> messages;
-
-    explicit LedSettings(const IlluminationSequence& sequence) {
-        for (const Illumination& s : sequence) levels.emplace_back(s.levels().begin(), s.levels().end());
-        for (auto& l : levels) messages.push_back({sequence_of<dds_sequence_uint8>(l)});
-    }
-};
 
 std::string status_text(const SensorCycle& s) {
     switch (s.status) {
@@ -92,14 +67,19 @@ struct RigPublisher::Impl {
     std::vector<std::string> tokens;
     std::string method;
     LedSettings settings;
+    CaptureTime capture_time;
     DdsEntity participant;
-    std::vector<DdsEntity> fused, metrics;
+    std::vector<DdsEntity> fused, metrics, cycles, backgrounds;  // fused, metrics: when the rig fuses
     DdsEntity diagnostics, description;
     std::optional<std::chrono::steady_clock::time_point> diagnosed;
-    PublisherCounts counts;
+    std::atomic<std::uint64_t> written{0}, dropped{0};
+    // Per sensor, the background frames of the settings so far (touched only
+    // by that sensor's thread), until every distinct setting has come.
+    std::vector<std::vector<std::pair<Illumination, std::vector<Frame>>>> background_takes;
+    std::size_t distinct_settings = 0;
 
-    Impl(const RigTopics& r, const PublisherOptions& o)
-        : rig(r), options(o), method(method_label(r.fusion)), settings(r.sequence) {
+    Impl(const RigTopics& r, const PublisherOptions& o, CaptureTime t)
+        : rig(r), options(o), method(method_label(r.fusion)), settings(r.sequence), capture_time(std::move(t)) {
         std::map<std::string, std::string> serial_of;
         for (const SensorInfo& s : rig.sensors) {
             const std::string token = topic_token(s.serial);
@@ -114,12 +94,25 @@ struct RigPublisher::Impl {
         participant = DdsEntity(dds_create_participant(dds_domainid_t(options.domain), nullptr, nullptr),
                                 "DDS participant in domain " + std::to_string(options.domain));
         const TopicQos image_qos(kImageDepth, true), metrics_qos(kMetricsDepth, true),
-            diagnostics_qos(kDiagnosticsDepth, false), rig_qos(kRigDepth, true);
+            diagnostics_qos(kDiagnosticsDepth, false), rig_qos(kRigDepth, true), cycle_qos(kCycleDepth, true),
+            background_qos(kBackgroundDepth, true);
         for (const std::string& token : tokens) {
-            fused.push_back(make_writer(participant, sensor_msgs_msg_dds__Image__desc, "/vkfuse/" + token + "/fused", image_qos));
-            metrics.push_back(make_writer(participant, vkfuse_msgs_msg_dds__FusionMetrics__desc,
-                                          "/vkfuse/" + token + "/metrics", metrics_qos));
+            const std::string topic = "/vkfuse/" + token;
+            if (rig.fused) {
+                fused.push_back(make_writer(participant, sensor_msgs_msg_dds__Image__desc, topic + "/fused", image_qos));
+                metrics.push_back(
+                    make_writer(participant, vkfuse_msgs_msg_dds__FusionMetrics__desc, topic + "/metrics", metrics_qos));
+            }
+            if (options.frames) {
+                cycles.push_back(make_writer(participant, vkfuse_msgs_msg_dds__LitCycle__desc, topic + "/cycle", cycle_qos));
+                backgrounds.push_back(make_writer(participant, vkfuse_msgs_msg_dds__Background__desc,
+                                                  topic + "/background", background_qos));
+            }
         }
+        background_takes.resize(tokens.size());
+        std::set<std::string> distinct;
+        for (const Illumination& setting : rig.sequence) distinct.insert(setting.to_string());
+        distinct_settings = distinct.size();
         diagnostics = make_writer(participant, diagnostic_msgs_msg_dds__DiagnosticArray__desc, "/diagnostics", diagnostics_qos);
         description = make_writer(participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig", rig_qos);
         describe_rig();
@@ -127,9 +120,59 @@ struct RigPublisher::Impl {
 
     void write(const DdsEntity& writer, const void* sample) {
         if (dds_write(writer.get(), sample) == DDS_RETCODE_OK)
-            ++counts.written;
+            ++written;
         else
-            ++counts.dropped;
+            ++dropped;
+    }
+
+    builtin_interfaces_msg_dds__Time_ stamp(std::size_t sensor, double timestamp) const {
+        return stamp_of(capture_time ? capture_time(sensor, timestamp) : std::chrono::system_clock::now());
+    }
+
+    std::vector<builtin_interfaces_msg_dds__Time_> stamps(std::size_t sensor, const std::vector<Frame>& frames) const {
+        std::vector<builtin_interfaces_msg_dds__Time_> out;
+        for (const Frame& f : frames) out.push_back(stamp(sensor, f.timestamp));
+        return out;
+    }
+
+    void publish_cycle(std::size_t i, std::uint64_t cycle, const SensorCycle& s,
+                       const std::vector<builtin_interfaces_msg_dds__Time_>& frame_stamps) {
+        std::vector<const vkfuse_msgs_msg_dds__LedSetting_*> lit;
+        for (std::size_t k = 0; k < s.frames.size(); ++k) lit.push_back(&settings.messages.at(k));
+        LitFrames frames(s.frames, frame_stamps, lit, s.serial);
+        vkfuse_msgs_msg_dds__LitCycle_ msg{};
+        msg.header = {frame_stamps.front(), text(s.serial)};
+        msg.serial = text(s.serial);
+        msg.cycle = cycle;
+        msg.frames = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LitFrame_>(frames.messages);
+        write(cycles[i], &msg);
+    }
+
+    void add_background(std::size_t i, const Illumination& setting, const std::vector<Frame>& frames) {
+        auto& takes = background_takes.at(i);
+        takes.emplace_back(setting, frames);
+        if (takes.size() < distinct_settings) return;
+        // One message of every setting's frames, in sequence order.
+        std::vector<Frame> all;
+        std::vector<const vkfuse_msgs_msg_dds__LedSetting_*> lit;
+        for (const auto& [taken, fs] : takes) {
+            const auto k = std::size_t(std::find(rig.sequence.begin(), rig.sequence.end(), taken) - rig.sequence.begin());
+            for (const Frame& f : fs) {
+                all.push_back(f);
+                lit.push_back(&settings.messages.at(k));
+            }
+        }
+        const SensorInfo& sensor = rig.sensors[i];
+        const auto frame_stamps = stamps(i, all);
+        LitFrames messages(all, frame_stamps, lit, sensor.serial);
+        vkfuse_msgs_msg_dds__Background_ msg{};
+        msg.header = {frame_stamps.empty() ? stamp_of(std::chrono::system_clock::now()) : frame_stamps.front(),
+                      text(sensor.serial)};
+        msg.serial = text(sensor.serial);
+        msg.frames_per_setting = std::uint32_t(takes.front().second.size());
+        msg.frames = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LitFrame_>(messages.messages);
+        write(backgrounds[i], &msg);
+        takes.clear();
     }
 
     void describe_rig() {
@@ -142,7 +185,7 @@ struct RigPublisher::Impl {
         }
         for (std::size_t i = 0; i < rig.sensors.size(); ++i) {
             SensorInfo& s = rig.sensors[i];
-            sensors.push_back({text(s.serial), text(tokens[i]), std::uint32_t(s.width), std::uint32_t(s.height),
+            sensors.push_back({text(s.serial), text(tokens[i]), text(s.model), s.fps, std::uint32_t(s.width), std::uint32_t(s.height),
                                text(s.leds.model), sequence_of<dds_sequence_string>(channels[i]),
                                std::uint16_t(s.leds.max_level)});
         }
@@ -157,9 +200,12 @@ struct RigPublisher::Impl {
         msg.sensors = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__SensorDescription_>(sensors);
         msg.settings = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LedSetting_>(settings.messages);
         msg.method = text(method);
+        msg.fused = rig.fused;
         msg.metrics = sequence_of<dds_sequence_string>(metric_texts);
         msg.skip = text(skip);
         msg.skip_threshold = rig.skip.threshold;
+        msg.background_frames = std::uint32_t(rig.background_frames);
+        msg.frames = options.frames;
         write(description, &msg);
     }
 
@@ -244,8 +290,8 @@ struct RigPublisher::Impl {
     }
 };
 
-RigPublisher::RigPublisher(const RigTopics& rig, const PublisherOptions& options)
-    : impl_(std::make_unique<Impl>(rig, options)) {}
+RigPublisher::RigPublisher(const RigTopics& rig, const PublisherOptions& options, CaptureTime capture_time)
+    : impl_(std::make_unique<Impl>(rig, options, std::move(capture_time))) {}
 
 // Subscribers still receiving the last cycles (a large image goes in many
 // fragments) get them before the participant leaves: at most kLinger in all.
@@ -253,25 +299,31 @@ RigPublisher::~RigPublisher() {
     constexpr auto kLinger = std::chrono::seconds(2);
     const auto deadline = std::chrono::steady_clock::now() + kLinger;
     std::vector<const DdsEntity*> writers{&impl_->diagnostics};
-    for (const DdsEntity& w : impl_->fused) writers.push_back(&w);
-    for (const DdsEntity& w : impl_->metrics) writers.push_back(&w);
+    for (const auto* group : {&impl_->fused, &impl_->metrics, &impl_->cycles})
+        for (const DdsEntity& w : *group) writers.push_back(&w);
     for (const DdsEntity* w : writers) {
         const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - std::chrono::steady_clock::now());
         if (left.count() <= 0 || dds_wait_for_acks(w->get(), left.count()) == DDS_RETCODE_TIMEOUT) break;
     }
 }
 
-void RigPublisher::publish(const CycleResult& cycle, std::span<const std::chrono::system_clock::time_point> captured) {
+void RigPublisher::publish(const CycleResult& cycle) {
     Impl& im = *impl_;
-    if (cycle.sensors.size() != im.tokens.size() || captured.size() != im.tokens.size())
+    if (cycle.sensors.size() != im.tokens.size())
         throw Error(ErrorKind::InvalidArgument, "ros2 publisher: a cycle of " + std::to_string(cycle.sensors.size()) +
-                                                    " sensors and " + std::to_string(captured.size()) +
-                                                    " capture times for a rig of " + std::to_string(im.tokens.size()));
+                                                    " sensors for a rig of " + std::to_string(im.tokens.size()));
     for (std::size_t i = 0; i < cycle.sensors.size(); ++i) {
         const SensorCycle& s = cycle.sensors[i];
-        const auto stamp = stamp_of(captured[i]);
-        if (s.status == SensorStatus::Ok && s.fused) im.publish_fused(i, s, stamp);
-        im.publish_metrics(i, cycle.cycle, s, stamp);
+        const bool ok = s.status == SensorStatus::Ok && !s.frames.empty();
+        const auto frame_stamps = ok ? im.stamps(i, s.frames) : std::vector<builtin_interfaces_msg_dds__Time_>{};
+        const auto stamp = ok ? frame_stamps.front() : stamp_of(std::chrono::system_clock::now());
+        if (!im.fused.empty()) {
+            if (ok && s.fused) im.publish_fused(i, s, stamp);
+            im.publish_metrics(i, cycle.cycle, s, stamp);
+        }
+        // A watch cycle (one setting) is no cycle a fusion host could fuse.
+        if (!im.cycles.empty() && ok && s.frames.size() == im.rig.sequence.size())
+            im.publish_cycle(i, cycle.cycle, s, frame_stamps);
     }
     const auto now = std::chrono::steady_clock::now();
     if (!im.diagnosed || now - *im.diagnosed >= kDiagnosticsPeriod) {
@@ -280,10 +332,16 @@ void RigPublisher::publish(const CycleResult& cycle, std::span<const std::chrono
     }
 }
 
-int RigPublisher::fused_subscribers(std::size_t sensor) const { return matched_subscribers(impl_->fused.at(sensor)); }
-int RigPublisher::metrics_subscribers(std::size_t sensor) const {
-    return matched_subscribers(impl_->metrics.at(sensor));
+void RigPublisher::publish_background(std::size_t sensor, const Illumination& setting, const std::vector<Frame>& frames) {
+    if (!impl_->backgrounds.empty()) impl_->add_background(sensor, setting, frames);
 }
-PublisherCounts RigPublisher::counts() const { return impl_->counts; }
+
+bool RigPublisher::has_subscribers(std::size_t sensor) const {
+    for (const auto* group : {&impl_->fused, &impl_->metrics, &impl_->cycles})
+        if (!group->empty() && matched_subscribers(group->at(sensor)) == 0) return false;
+    return true;
+}
+
+PublisherCounts RigPublisher::counts() const { return {impl_->written.load(), impl_->dropped.load()}; }
 
 }  // namespace vkfuse::ros2

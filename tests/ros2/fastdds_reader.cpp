@@ -60,14 +60,14 @@ void FusionMetricsMessage::read(Cdr& c) {
 void RigDescriptionMessage::read(Cdr& c) {
     header.read(c);
     sensors = read_sequence<Sensor>(c, [&](Sensor& s) {
-        c >> s.serial >> s.token >> s.width >> s.height >> s.led_model;
+        c >> s.serial >> s.token >> s.model >> s.fps >> s.width >> s.height >> s.led_model;
         s.led_channels = read_sequence<std::string>(c);
         c >> s.led_max_level;
     });
     settings = read_sequence<std::vector<std::uint8_t>>(c);
-    c >> method;
+    c >> method >> fused;
     metrics = read_sequence<std::string>(c);
-    c >> skip >> skip_threshold;
+    c >> skip >> skip_threshold >> background_frames >> frames;
 }
 
 void DiagnosticArrayMessage::read(Cdr& c) {

@@ -54,7 +54,8 @@ struct FusionMetricsMessage {  // vkfuse_msgs/msg/FusionMetrics
 struct RigDescriptionMessage {  // vkfuse_msgs/msg/RigDescription
     static constexpr const char* kType = "vkfuse_msgs::msg::dds_::RigDescription_";
     struct Sensor {
-        std::string serial, token;
+        std::string serial, token, model;
+        double fps = 0;
         std::uint32_t width = 0, height = 0;
         std::string led_model;
         std::vector<std::string> led_channels;
@@ -64,9 +65,12 @@ struct RigDescriptionMessage {  // vkfuse_msgs/msg/RigDescription
     std::vector<Sensor> sensors;
     std::vector<std::vector<std::uint8_t>> settings;
     std::string method;
+    bool fused = false;
     std::vector<std::string> metrics;
     std::string skip;
     double skip_threshold = 0;
+    std::uint32_t background_frames = 0;
+    bool frames = false;
     void read(eprosima::fastcdr::Cdr& c);
 };
 

@@ -47,6 +47,10 @@ struct RigConfig {
     double cycle_timeout_s = 5.0;     // wall-clock time a cycle waits for a sensor
     double startup_timeout_s = 60.0;  // wall-clock time for calibration and background
     bool want_fused = true;           // read fused images back (else metrics only)
+    // false: a capture host. Cycles are assembled, judged and returned with
+    // their frames (and backgrounds taken, for on_background) but nothing is
+    // fused or measured: no engine, no device needed; skip must be off.
+    bool fuse = true;
     // The metrics of each cycle (PlanConfig::metrics); background_diff only
     // when there is a background (background_frames > 0).
     MetricSet metrics = MetricSet::all();

@@ -4,22 +4,27 @@
 // no ROS installed here. Built as vkfuse::ros2 where Cyclone DDS is found;
 // the other libraries never depend on it. The topics (docs/ros2.md):
 //
-//   /vkfuse/<token>/fused     sensor_msgs/msg/Image (rgb8, or 32FC3); the last 3 kept
-//   /vkfuse/<token>/metrics   vkfuse_msgs/msg/FusionMetrics; the last 20 kept
-//   /vkfuse/rig               vkfuse_msgs/msg/RigDescription; the last one kept
-//   /diagnostics              diagnostic_msgs/msg/DiagnosticArray, once a second
+//   /vkfuse/<token>/fused       sensor_msgs/msg/Image (rgb8, or 32FC3); the last 3 kept
+//   /vkfuse/<token>/metrics     vkfuse_msgs/msg/FusionMetrics; the last 20 kept
+//   /vkfuse/<token>/cycle       vkfuse_msgs/msg/LitCycle (frames: on); the last 3 kept
+//   /vkfuse/<token>/background  vkfuse_msgs/msg/Background (frames: on); the last one kept
+//   /vkfuse/rig                 vkfuse_msgs/msg/RigDescription; the last one kept
+//   /diagnostics                diagnostic_msgs/msg/DiagnosticArray, once a second
 //
+// A rig that fuses nothing (a capture host) has no fused and metrics topics.
 // All reliable; the topics that keep samples are transient local, so a
 // subscriber that asks for it gets them when it joins (a volatile one, ROS
-// 2's default, matches too).
+// 2's default, matches too). Every writer asserts its liveliness at least
+// every kLivelinessLease: a subscriber knows within that time that this
+// process is gone, however it ended.
 //
 // The message definitions ship as a ROS 2 interface package (ros2/vkfuse_msgs).
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,6 +65,10 @@ inline std::optional<int> parse_domain(std::string_view text) {
 // "2023.7" -> "sensor_2023_7"). The messages carry the serial itself.
 std::string topic_token(std::string_view serial);
 
+// How soon a subscriber learns that a publisher is gone (killed, or its
+// host off the network): its writers' liveliness lease.
+inline constexpr std::chrono::milliseconds kLivelinessLease{500};
+
 // What /vkfuse/rig describes, and what the topics are named after.
 struct RigTopics {
     std::vector<SensorInfo> sensors;  // serials unique, and their tokens too
@@ -67,12 +76,21 @@ struct RigTopics {
     FusionSpec fusion;
     MetricSet metrics;
     SkipConfig skip;
+    int background_frames = 0;  // per setting (RigConfig::background_frames)
+    bool fused = true;          // false: a capture host (RigConfig::fuse)
 };
 
 struct PublisherOptions {
     int domain = 0;
     ImageEncoding encoding = ImageEncoding::Rgb8;
+    // Each sensor's cycles (/vkfuse/<token>/cycle) and background
+    // (/vkfuse/<token>/background) too, for a fusion host on another machine.
+    bool frames = false;
 };
+
+// When sensor's frame stamped `timestamp` (seconds on the sensor's clock)
+// began its exposure, on the system clock: what header.stamp says.
+using CaptureTime = std::function<std::chrono::system_clock::time_point(std::size_t sensor, double timestamp)>;
 
 // Samples the publisher handed to DDS, and those DDS refused (a writer that
 // stayed blocked on a reliable subscriber past its time, or out of resources).
@@ -86,20 +104,27 @@ public:
     // Joins the domain and creates every topic's writer; publishes
     // /vkfuse/rig at once. Throws Error(InvalidArgument) for two sensors
     // whose serials share a token, Error(Device) naming what DDS refused.
-    RigPublisher(const RigTopics& rig, const PublisherOptions& options);
+    // capture_time dates frames (empty: every frame is dated when published).
+    RigPublisher(const RigTopics& rig, const PublisherOptions& options, CaptureTime capture_time = {});
     ~RigPublisher();
     RigPublisher(const RigPublisher&) = delete;
     RigPublisher& operator=(const RigPublisher&) = delete;
 
-    // One cycle: each sensor's metrics, and its fused image where the cycle
-    // has one; /diagnostics when a second passed since it was last sent.
-    // captured[i]: sensor i's capture time on the system clock (header.stamp).
-    void publish(const CycleResult& cycle, std::span<const std::chrono::system_clock::time_point> captured);
+    // One cycle: each sensor's metrics, its fused image where the cycle has
+    // one, its frames (options.frames) where it delivered; /diagnostics when
+    // a second passed since it was last sent. header.stamp: the capture time
+    // of the sensor's first frame (now, where it delivered none).
+    void publish(const CycleResult& cycle);
 
-    // Subscribers currently matched to sensor's fused or metrics topic, or to
-    // /diagnostics: what a caller may wait for before its first cycle.
-    int fused_subscribers(std::size_t sensor) const;
-    int metrics_subscribers(std::size_t sensor) const;
+    // With options.frames: one setting's background frames of a sensor (as
+    // RigConfig::on_background hands them over). Once every distinct setting
+    // of the sequence has come, /vkfuse/<token>/background is published.
+    // Sensors may call it from their own threads at once.
+    void publish_background(std::size_t sensor, const Illumination& setting, const std::vector<Frame>& frames);
+
+    // Whether every topic sensor publishes each cycle (fused, metrics, or
+    // cycle) has a subscriber: what a caller may wait for before its first cycle.
+    bool has_subscribers(std::size_t sensor) const;
     PublisherCounts counts() const;
 
     struct Impl;

@@ -1,0 +1,142 @@
+// RemoteRig (vkfuse/ros2/remote.hpp): the capture hosts' descriptions heard,
+// and a RemoteSensor for each sensor asked for.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+
+#include "ros2/remote_sensor.hpp"
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/ros2/publisher.hpp"
+
+namespace vkfuse::ros2 {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Capture hosts whose descriptions the reader keeps until they are taken.
+constexpr int kDescriptionDepth = 16;
+
+// This process's domain, created with DDS's bound on a sample's size unless
+// something here joined it first; whatever CYCLONEDDS_URI configures
+// (the network interface, say) still applies.
+DdsEntity bounded_domain(int domain) {
+    const char* uri = std::getenv("CYCLONEDDS_URI");
+    const std::string config = (uri && *uri ? std::string(uri) + "," : std::string()) +
+                               "<Internal><MaxSampleSize>" + std::to_string(kMaxSampleBytes) +
+                               "B</MaxSampleSize></Internal>";
+    const dds_entity_t d = dds_create_domain(dds_domainid_t(domain), config.c_str());
+    return d > 0 ? DdsEntity(d, "DDS domain") : DdsEntity();
+}
+
+void to_stderr(const std::string& line) { std::fprintf(stderr, "vkfuse: %s\n", line.c_str()); }
+
+}  // namespace
+
+struct RemoteRig::Impl {
+    std::shared_ptr<RemoteDomain> domain = std::make_shared<RemoteDomain>();
+    RemoteDescription description;
+    std::vector<std::shared_ptr<RemoteSensor>> sensors;
+
+    ~Impl() { domain->closing = true; }
+};
+
+RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<Impl>()) {
+    if (options.domain < 0 || options.domain > kMaxDomain)
+        throw Error(ErrorKind::InvalidArgument, "ROS domain " + std::to_string(options.domain) + ": expected 0.." +
+                                                    std::to_string(kMaxDomain));
+    RemoteDomain& d = *impl_->domain;
+    d.report = options.report ? options.report : to_stderr;
+    d.domain = bounded_domain(options.domain);
+    d.participant = DdsEntity(dds_create_participant(dds_domainid_t(options.domain), nullptr, nullptr),
+                              "DDS participant in domain " + std::to_string(options.domain));
+    const DdsEntity reader = make_reader(d.participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig",
+                                         TopicQos::reader(kDescriptionDepth));
+    const DdsEntity condition(dds_create_readcondition(reader.get(), DDS_ANY_STATE), "DDS read condition");
+    const DdsEntity waitset(dds_create_waitset(d.participant.get()), "DDS wait set");
+    dds_waitset_attach(waitset.get(), condition.get(), 0);
+
+    // Serial -> what its capture host said, the first description of it heard.
+    std::map<std::string, std::pair<SensorInfo, DescribedRig>> heard;
+    std::vector<std::string> first_host;  // its sensors, when no serial was asked for
+    std::string refused;
+    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                             std::chrono::duration<double>(options.startup_timeout_s));
+    auto complete = [&] {
+        if (options.serials.empty()) return !first_host.empty();
+        for (const std::string& s : options.serials)
+            if (!heard.count(s)) return false;
+        return true;
+    };
+    while (!complete()) {
+        void* samples[1] = {nullptr};
+        dds_sample_info_t info{};
+        const dds_return_t n = dds_take(reader.get(), samples, &info, 1, 1);
+        if (n > 0) {
+            const auto& msg = *static_cast<const vkfuse_msgs_msg_dds__RigDescription_*>(samples[0]);
+            if (info.valid_data && msg.frames && !msg.fused) {
+                DescribedRig rig;
+                if (std::string p = check_description(msg, rig); !p.empty()) {
+                    refused = p;
+                    d.report("/vkfuse/rig: a capture host's description refused: " + p);
+                } else {
+                    std::vector<std::string> serials;
+                    for (const SensorInfo& s : rig.sensors) {
+                        serials.push_back(s.serial);
+                        heard.try_emplace(s.serial, s, rig);
+                    }
+                    if (first_host.empty()) first_host = serials;
+                }
+            }
+            dds_return_loan(reader.get(), samples, n);
+            continue;
+        }
+        if (Clock::now() >= deadline) {
+            std::string missing;
+            for (const std::string& s : options.serials)
+                if (!heard.count(s)) missing += (missing.empty() ? "" : ", ") + s;
+            throw Error(ErrorKind::Timeout,
+                        "--source ros2: " +
+                            (missing.empty() ? std::string("no capture host (vkfuse run --capture-only --publish ros2 "
+                                                           "--publish-frames)")
+                                             : "no capture host describes " + missing) +
+                            " in ROS domain " + std::to_string(options.domain) + " within " +
+                            std::to_string(int(options.startup_timeout_s)) + " s" +
+                            (refused.empty() ? "" : " (refused: " + refused + ")"));
+        }
+        dds_waitset_wait(waitset.get(), nullptr, 0, DDS_MSECS(100));
+    }
+
+    const std::vector<std::string>& chosen = options.serials.empty() ? first_host : options.serials;
+    RemoteDescription& out = impl_->description;
+    for (const std::string& serial : chosen) {
+        const auto& [info, rig] = heard.at(serial);
+        if (out.sensors.empty()) {
+            out.sequence = rig.sequence;
+            out.background_frames = rig.background_frames;
+        } else if (rig.sequence != out.sequence || rig.background_frames != out.background_frames) {
+            throw Error(ErrorKind::InvalidArgument, "--source ros2: " + serial + " cycles through " +
+                                                        to_string(rig.sequence) + " with " +
+                                                        std::to_string(rig.background_frames) +
+                                                        " background frames, " + out.sensors.front().serial + " through " +
+                                                        to_string(out.sequence) + " with " +
+                                                        std::to_string(out.background_frames) + ": one rig fuses one sequence");
+        }
+        out.sensors.push_back(info);
+    }
+    for (const SensorInfo& info : out.sensors)
+        impl_->sensors.push_back(std::make_shared<RemoteSensor>(
+            impl_->domain, SensorContract{info, out.sequence, out.background_frames}, options));
+}
+
+RemoteRig::~RemoteRig() = default;
+
+const RemoteDescription& RemoteRig::description() const { return impl_->description; }
+
+std::vector<std::shared_ptr<Sensor>> RemoteRig::sensors() const {
+    return {impl_->sensors.begin(), impl_->sensors.end()};
+}
+
+RemoteCounts RemoteRig::counts(std::size_t sensor) const { return impl_->sensors.at(sensor)->counts(); }
+
+}  // namespace vkfuse::ros2

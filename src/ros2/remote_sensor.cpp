@@ -1,0 +1,214 @@
+// RemoteSensor (ros2/remote_sensor.hpp): a capture host's sensor, its
+// background first, then whole cycles, every sample checked.
+#include "ros2/remote_sensor.hpp"
+
+#include <algorithm>
+
+#include "vkfuse/core/error.hpp"
+#include "vkfuse/ros2/publisher.hpp"
+
+namespace vkfuse::ros2 {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How long one wait lasts before the sensor looks at its publisher's
+// liveliness and at closing again.
+constexpr auto kSlice = std::chrono::milliseconds(100);
+// A cycle-less second: the sensor is reported late (Error(Timeout)) and the
+// rig goes on without it until it delivers.
+constexpr auto kQuiet = std::chrono::seconds(1);
+// Cycles a sensor keeps (RemoteRigOptions::queue_bytes).
+constexpr std::uint64_t kMinQueueCycles = 2, kMaxQueueCycles = 16;
+
+// One sample taken on loan from a reader, returned when this goes.
+template <class Message>
+class Taken {
+public:
+    explicit Taken(const DdsEntity& reader) : reader_(reader.get()) {
+        n_ = dds_take(reader_, samples_, &info_, 1, 1);
+    }
+    ~Taken() {
+        if (n_ > 0) dds_return_loan(reader_, samples_, n_);
+    }
+    Taken(const Taken&) = delete;
+    Taken& operator=(const Taken&) = delete;
+    bool any() const { return n_ > 0; }
+    bool valid() const { return n_ > 0 && info_.valid_data; }
+    const Message& message() const { return *static_cast<const Message*>(samples_[0]); }
+    const dds_sample_info_t& info() const { return info_; }
+
+private:
+    dds_entity_t reader_;
+    void* samples_[1] = {nullptr};
+    dds_sample_info_t info_{};
+    dds_return_t n_ = 0;
+};
+
+}  // namespace
+
+RemoteSensor::RemoteSensor(std::shared_ptr<RemoteDomain> domain, SensorContract contract, const RemoteRigOptions& options)
+    : domain_(std::move(domain)),
+      contract_(std::move(contract)),
+      topic_("/vkfuse/" + topic_token(contract_.info.serial)),
+      startup_timeout_s_(options.startup_timeout_s) {
+    const std::uint64_t cycle_bytes = 3ull * std::uint64_t(contract_.info.width) * std::uint64_t(contract_.info.height) *
+                                      contract_.sequence.size();
+    const auto depth = int(std::clamp<std::uint64_t>(options.queue_bytes / std::max<std::uint64_t>(cycle_bytes, 1),
+                                                     kMinQueueCycles, kMaxQueueCycles));
+    cycles_ = make_reader(domain_->participant, vkfuse_msgs_msg_dds__LitCycle__desc, topic_ + "/cycle",
+                          TopicQos::reader(depth));
+    background_ = make_reader(domain_->participant, vkfuse_msgs_msg_dds__Background__desc, topic_ + "/background",
+                              TopicQos::reader(1));
+    background_done_ = contract_.background_frames == 0;
+}
+
+RemoteCounts RemoteSensor::counts() const {
+    std::lock_guard lock(counts_mutex_);
+    return counts_;
+}
+
+void RemoteSensor::problem(const std::string& what) {
+    {
+        std::lock_guard lock(counts_mutex_);
+        ++counts_.malformed;
+    }
+    const auto now = Clock::now();
+    if (now - last_line_ < std::chrono::seconds(1)) return;
+    last_line_ = now;
+    domain_->report(contract_.info.serial + ": " + what + " (" + topic_ + "; refused)");
+}
+
+bool RemoteSensor::wait_for_data(const DdsEntity& reader, Clock::duration wait) {
+    const DdsEntity condition(dds_create_readcondition(reader.get(), DDS_ANY_STATE), "DDS read condition");
+    const DdsEntity waitset(dds_create_waitset(domain_->participant.get()), "DDS wait set");
+    dds_waitset_attach(waitset.get(), condition.get(), 0);
+    const dds_return_t n =
+        dds_waitset_wait(waitset.get(), nullptr, 0, std::chrono::duration_cast<std::chrono::nanoseconds>(wait).count());
+    return n > 0;
+}
+
+bool RemoteSensor::publisher_alive() {
+    dds_liveliness_changed_status_t status{};
+    if (dds_get_liveliness_changed_status(cycles_.get(), &status) != DDS_RETCODE_OK) return alive_;
+    return status.alive_count > 0;
+}
+
+Frame RemoteSensor::next_background_frame() {
+    if (background_frames_.empty()) {
+        const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                 std::chrono::duration<double>(startup_timeout_s_));
+        for (;;) {
+            if (domain_->closing) throw Error(ErrorKind::Timeout, contract_.info.serial + ": closing");
+            Taken<vkfuse_msgs_msg_dds__Background_> sample(background_);
+            if (sample.valid()) {
+                const std::string p = check_background(sample.message(), contract_, background_frames_);
+                if (p.empty()) break;
+                problem(p);
+                continue;
+            }
+            if (sample.any()) continue;
+            if (Clock::now() >= deadline)
+                throw Error(ErrorKind::Timeout, contract_.info.serial + ": no background from its capture host within " +
+                                                    std::to_string(int(startup_timeout_s_)) + " s (" + topic_ +
+                                                    "/background)");
+            wait_for_data(background_, kSlice);
+        }
+        background_served_.assign(background_frames_.size(), 0);
+    }
+    for (std::size_t s = 0; s < background_frames_.size(); ++s) {
+        if (background_frames_[s].first != requested_ || background_served_[s] == background_frames_[s].second.size())
+            continue;
+        const std::size_t j = background_served_[s]++;
+        bool all = true;
+        for (std::size_t t = 0; t < background_frames_.size(); ++t)
+            all = all && background_served_[t] == background_frames_[t].second.size();
+        // The frames are freed once the capture thread has the last one.
+        background_done_ = all;
+        return std::move(background_frames_[s].second[j]);
+    }
+    throw Error(ErrorKind::InvalidArgument, contract_.info.serial + ": no background frame left under LEDs " +
+                                                requested_.to_string());
+}
+
+std::optional<std::vector<Frame>> RemoteSensor::take_cycle() {
+    Taken<vkfuse_msgs_msg_dds__LitCycle_> sample(cycles_);
+    if (!sample.valid()) return std::nullopt;
+    const dds_instance_handle_t from = sample.info().publication_handle;
+    const vkfuse_msgs_msg_dds__LitCycle_& msg = sample.message();
+    if (publication_ != 0 && from != publication_) {
+        dds_liveliness_changed_status_t status{};
+        dds_get_liveliness_changed_status(cycles_.get(), &status);
+        if (status.alive_count > 1) {
+            problem("a second publisher claims this serial while the first is alive");
+            return std::nullopt;
+        }
+        last_cycle_.reset();  // the capture host started again: its cycles count from 0
+    }
+    std::vector<Frame> frames;
+    if (std::string p = check_cycle(msg, contract_, frames); !p.empty()) {
+        problem(p);
+        return std::nullopt;
+    }
+    publication_ = from;
+    if (last_cycle_ && msg.cycle <= *last_cycle_) {
+        problem("cycle " + std::to_string(msg.cycle) + " after cycle " + std::to_string(*last_cycle_) +
+                ": cycle numbers going backwards");
+        return std::nullopt;
+    }
+    if (last_cycle_ && msg.cycle > *last_cycle_ + 1) {
+        const std::uint64_t missed = msg.cycle - *last_cycle_ - 1;
+        {
+            std::lock_guard lock(counts_mutex_);
+            counts_.missed += missed;
+        }
+        const auto now = Clock::now();
+        if (now - last_line_ >= std::chrono::seconds(1)) {
+            last_line_ = now;
+            domain_->report(contract_.info.serial + ": " + std::to_string(missed) + " cycle" + (missed > 1 ? "s" : "") +
+                            " before cycle " + std::to_string(msg.cycle) + " never arrived whole (" + topic_ + "/cycle)");
+        }
+    }
+    last_cycle_ = msg.cycle;
+    std::lock_guard lock(counts_mutex_);
+    ++counts_.cycles;
+    return frames;
+}
+
+std::vector<Frame> RemoteSensor::next_cycle() {
+    const auto quiet_until = Clock::now() + kQuiet;
+    for (;;) {
+        if (domain_->closing) throw Error(ErrorKind::Timeout, contract_.info.serial + ": closing");
+        const bool alive = publisher_alive();
+        if (alive_ && !alive) {
+            alive_ = false;
+            publication_ = 0;
+            {
+                std::lock_guard lock(counts_mutex_);
+                ++counts_.lost;
+            }
+            throw Error(ErrorKind::Unplugged, contract_.info.serial + ": its capture host is gone (no live publisher of " +
+                                                  topic_ + "/cycle)");
+        }
+        alive_ = alive;
+        if (std::optional<std::vector<Frame>> cycle = take_cycle()) return std::move(*cycle);
+        if (Clock::now() >= quiet_until) {
+            if (!alive_)
+                throw Error(ErrorKind::Unplugged, contract_.info.serial + ": no live publisher of " + topic_ + "/cycle");
+            throw Error(ErrorKind::Timeout, contract_.info.serial + ": no cycle from its capture host for " +
+                                                std::to_string(kQuiet.count()) + " s");
+        }
+        wait_for_data(cycles_, kSlice);
+    }
+}
+
+Frame RemoteSensor::grab() {
+    if (!background_done_) return next_background_frame();
+    if (!background_frames_.empty()) background_frames_ = {};
+    if (position_ == 0) cycle_ = next_cycle();
+    const std::size_t k = position_;
+    position_ = (position_ + 1) % cycle_.size();
+    return std::move(cycle_[k]);
+}
+
+}  // namespace vkfuse::ros2

@@ -1,0 +1,67 @@
+// ros2/remote_sensor.hpp - one sensor of a capture host, read from its
+// /vkfuse/<token>/cycle and /vkfuse/<token>/background (vkfuse/ros2/remote.hpp).
+#pragma once
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ros2/dds_entities.hpp"
+#include "ros2/remote_checks.hpp"
+#include "vkfuse/ros2/remote.hpp"
+
+namespace vkfuse::ros2 {
+
+// What every sensor of a RemoteRig shares; the last owner deletes the
+// participant (and with it every reader), after the sensors' threads are done
+// with it.
+struct RemoteDomain {
+    DdsEntity domain;  // set where this process created the domain with kMaxSampleBytes
+    DdsEntity participant;
+    std::atomic<bool> closing{false};  // the RemoteRig is gone: waits end at once
+    std::function<void(const std::string&)> report;
+};
+
+class RemoteSensor : public Sensor {
+public:
+    RemoteSensor(std::shared_ptr<RemoteDomain> domain, SensorContract contract, const RemoteRigOptions& options);
+    SensorInfo info() const override { return contract_.info; }
+    void set_illumination(const Illumination& setting) override { requested_ = setting; }
+    Frame grab() override;
+    RemoteCounts counts() const;
+
+private:
+    // Waits (at most `wait`) for a sample on reader; false when none came.
+    bool wait_for_data(const DdsEntity& reader, std::chrono::steady_clock::duration wait);
+    Frame next_background_frame();
+    std::vector<Frame> next_cycle();
+    // A sound cycle from the reader's next sample, or nothing (counted).
+    std::optional<std::vector<Frame>> take_cycle();
+    bool publisher_alive();
+    void problem(const std::string& what);
+
+    std::shared_ptr<RemoteDomain> domain_;
+    SensorContract contract_;
+    std::string topic_;  // /vkfuse/<token>
+    double startup_timeout_s_;
+    DdsEntity cycles_, background_, waitset_;
+    Illumination requested_;
+    // The background, by setting, until every frame of it was handed out.
+    std::vector<std::pair<Illumination, std::vector<Frame>>> background_frames_;
+    std::vector<std::size_t> background_served_;
+    bool background_done_ = false;
+    std::vector<Frame> cycle_;  // the cycle being handed out
+    std::size_t position_ = 0;
+    dds_instance_handle_t publication_ = 0;  // whose cycles we follow
+    std::optional<std::uint64_t> last_cycle_;
+    bool alive_ = false;
+    std::chrono::steady_clock::time_point last_line_{};
+    mutable std::mutex counts_mutex_;
+    RemoteCounts counts_;
+};
+
+}  // namespace vkfuse::ros2
