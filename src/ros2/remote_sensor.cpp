@@ -187,11 +187,18 @@ std::vector<Frame> RemoteSensor::next_cycle() {
                 std::lock_guard lock(counts_mutex_);
                 ++counts_.lost;
             }
-            throw Error(ErrorKind::Unplugged, contract_.info.serial + ": its capture host is gone (no live publisher of " +
-                                                  topic_ + "/cycle)");
+            const std::string gone =
+                contract_.info.serial + ": its capture host is gone (no live publisher of " + topic_ + "/cycle)";
+            domain_->report(gone);
+            away_ = true;
+            throw Error(ErrorKind::Unplugged, gone);
         }
         alive_ = alive;
-        if (std::optional<std::vector<Frame>> cycle = take_cycle()) return std::move(*cycle);
+        if (std::optional<std::vector<Frame>> cycle = take_cycle()) {
+            if (away_) domain_->report(contract_.info.serial + ": its capture host is back (" + topic_ + "/cycle)");
+            away_ = false;
+            return std::move(*cycle);
+        }
         if (Clock::now() >= quiet_until) {
             if (!alive_)
                 throw Error(ErrorKind::Unplugged, contract_.info.serial + ": no live publisher of " + topic_ + "/cycle");

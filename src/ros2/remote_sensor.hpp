@@ -59,6 +59,7 @@ private:
     dds_instance_handle_t publication_ = 0;  // whose cycles we follow
     std::optional<std::uint64_t> last_cycle_;
     bool alive_ = false;
+    bool away_ = false;  // said gone, not yet back
     std::chrono::steady_clock::time_point last_line_{};
     mutable std::mutex counts_mutex_;
     RemoteCounts counts_;
