@@ -11,8 +11,9 @@ PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libgtest-dev 
           mesa-vulkan-drivers vulkan-validationlayers glslang-tools pybind11-dev python3-dev
           cyclonedds-dev cyclonedds-tools)  # Cyclone DDS: `vkfuse run --publish ros2`
 
-# What the ros2 tests read vkfuse's topics with: Fast DDS, the other DDS ROS 2 ships.
-ROS2_TEST_PACKAGES=(libfastrtps-dev libfastcdr-dev)
+# What the ros2 tests read vkfuse's topics with (Fast DDS, the other DDS ROS 2
+# ships), and make two hosts of one machine with (network namespaces, nftables).
+ROS2_TEST_PACKAGES=(libfastrtps-dev libfastcdr-dev nftables iproute2)
 
 # What the Python module's tests need: pytest and the peers it is checked against.
 PYTHON_TEST_PACKAGES=(python3-pytest python3-numpy python3-pywt python3-opencv)

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "vkfuse/core/error.hpp"
@@ -62,6 +63,12 @@ std::string frame_problem(const vkfuse_msgs_msg_dds__LitFrame_& m, const SensorC
 }
 
 }  // namespace
+
+std::string seconds_text(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", seconds);
+    return text;
+}
 
 IlluminationSequence distinct_settings(const IlluminationSequence& sequence) {
     IlluminationSequence out;

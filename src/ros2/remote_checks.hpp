@@ -40,6 +40,9 @@ std::string check_cycle(const vkfuse_msgs_msg_dds__LitCycle_& msg, const SensorC
 std::string check_background(const vkfuse_msgs_msg_dds__Background_& msg, const SensorContract& sensor,
                              std::vector<std::pair<Illumination, std::vector<Frame>>>& out);
 
+// "1 s", "0.5 s": a time in a line.
+std::string seconds_text(double seconds);
+
 // The sequence's settings, each once, in order of first use.
 IlluminationSequence distinct_settings(const IlluminationSequence& sequence);
 

@@ -101,7 +101,7 @@ RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<I
                                                            "--publish-frames)")
                                              : "no capture host describes " + missing) +
                             " in ROS domain " + std::to_string(options.domain) + " within " +
-                            std::to_string(int(options.startup_timeout_s)) + " s" +
+                            seconds_text(options.startup_timeout_s) +
                             (refused.empty() ? "" : " (refused: " + refused + ")"));
         }
         dds_waitset_wait(waitset.get(), nullptr, 0, DDS_MSECS(100));

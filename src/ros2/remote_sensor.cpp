@@ -110,7 +110,7 @@ Frame RemoteSensor::next_background_frame() {
             if (sample.any()) continue;
             if (Clock::now() >= deadline)
                 throw Error(ErrorKind::Timeout, contract_.info.serial + ": no background from its capture host within " +
-                                                    std::to_string(int(startup_timeout_s_)) + " s (" + topic_ +
+                                                    seconds_text(startup_timeout_s_) + " (" + topic_ +
                                                     "/background)");
             wait_for_data(background_, kSlice);
         }
