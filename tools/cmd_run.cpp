@@ -51,6 +51,7 @@ constexpr OptionSpec kOptions[] = {
     {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},
     {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},
     {"--replay", "", "DIR", "play a recorded dataset instead of simulating (vkfuse sim, vkfuse run --record)"},
+    {"--realtime", "", "", "with --replay: decode every frame first, then hand each over at the pace it was recorded, as the sensors did (default: as fast as the host fuses)"},
     {"--record", "", "DIR", "record the frames fused (and the background frames) as a dataset (new directory)"},
     {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json (a new directory)"},
     {"--replace", "", "", "let --out name a previous run's directory: replaced whole once this run succeeds"},
@@ -61,6 +62,7 @@ constexpr OptionSpec kOptions[] = {
     {"--publish-frames", "", "", "with --publish ros2: also each sensor's cycles (/vkfuse/<serial>/cycle) and background (/vkfuse/<serial>/background), for a fusion host (--source ros2)"},
     {"--capture-only", "", "", "a capture host: capture and publish (--publish ros2 --publish-frames) or record the cycles, fuse nothing (no Vulkan device needed)"},
     {"--source", "", "ros2", "fuse the sensors a capture host publishes on ROS 2's wire (in --ros-domain) instead of local ones; --sensor SERIAL picks some (default: every sensor of the first capture host heard)"},
+    {"--queue", "", "N", "with --source ros2: cycles each sensor keeps when fusion falls behind, the oldest dropped first (default 4: results stay fresh; more rides out longer stalls)"},
     {"--startup-timeout", "", "SECONDS", "how long the start waits for sensors to calibrate and take their backgrounds, and with --source ros2 for the capture host (default 60)"},
 };
 
@@ -129,6 +131,11 @@ void require_replay_memory(const RunOptions& o, const Dataset& dataset) {
         frame.channels = 3;
         need += fuse_memory_need(std::vector<io::ImageHeader>(K, frame), o.fusion.method, o.backend);
         need += K * (3 * frame.samples() + frame.image_bytes());
+        // --realtime holds every frame it plays, decoded.
+        if (o.realtime)
+            need += DatasetSensor(std::shared_ptr<const Dataset>(&dataset, [](const Dataset*) {}), r.info.serial, o.object)
+                        .frames() *
+                    frame.samples();  // 8-bit samples
     }
     require_memory({(std::filesystem::path(dataset.directory) / "manifest.json").string()}, "replaying", need);
 }
@@ -314,10 +321,14 @@ int run(const Args& args) {
     Rig rig(context ? &*context : nullptr, rig_config(s), s.sensors.rig);
     open_outputs(s);
     s.publisher = RunPublisher::make(s.options, s.sensors.rig);
-    rig.start();
+    // Before the rig starts: a background goes out to subscribers already
+    // matched, as a live sample (one written before a subscriber matched
+    // reaches it only as history, which a capture host that exits at once
+    // can take away with it).
     if (s.publisher) s.publisher->wait_for_subscribers();
+    rig.start();
     const RunStats stats = cycle_loop(s, rig, stop);
-    const std::string summary = stats.summary_json(rig);
+    const std::string summary = stats.summary_json(rig, source_summary(s.sensors));
     require_results(s, stats, stop.requested());
     if (s.recorder) s.recorder->finish();
     if (s.output) s.output->finish(summary);

@@ -72,6 +72,8 @@ void metric_options(const Args& args, RunOptions& o) {
     o.metrics = *asked;
 }
 
+constexpr int kMaxSourceQueue = 64;
+
 void require_ros2(const std::string& option) {
     if (!kBuiltWithRos2)
         fail(option + ": this vkfuse was built without ROS 2 support (Cyclone DDS: apt-get install "
@@ -82,7 +84,10 @@ void require_ros2(const std::string& option) {
 // for the command line here.
 void source_options(const Args& args, RunOptions& o) {
     const std::optional<std::string> source = args.value("--source");
-    if (!source) return;
+    if (!source) {
+        if (args.has("--queue")) args.usage_error("--queue needs --source ros2");
+        return;
+    }
     if (*source != "ros2") fail("--source " + *source + ": expected ros2");
     require_ros2("--source ros2");
     for (const char* option : kSimulatorOptions)
@@ -94,6 +99,11 @@ void source_options(const Args& args, RunOptions& o) {
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --source ros2 (the capture host publishes the frames)");
     o.source_ros2 = true;
+    if (auto v = args.value("--queue")) {
+        o.source_queue = parse_positive_int("--queue", *v);
+        if (o.source_queue > kMaxSourceQueue)
+            fail("--queue " + *v + ": at most " + std::to_string(kMaxSourceQueue) + " cycles");
+    }
 }
 
 // --capture-only: a capture host, whose cycles go somewhere whole.
@@ -178,6 +188,8 @@ RunOptions parse_run_options(const Args& args) {
     o.capture_only = args.has("--capture-only");
     o.replay = args.value("--replay");
     if (o.replay) check_replay_conflicts(args);
+    o.realtime = args.has("--realtime");
+    if (o.realtime && !o.replay) args.usage_error("--realtime needs --replay (live sensors keep their own pace)");
     o.digits = args.values("--sensor");
     if (!o.digits.empty() && !o.source_ros2) check_digit_conflicts(args);
     for (const char* option : kSimulatorOptions) o.simulate = o.simulate || args.has(option);

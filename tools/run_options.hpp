@@ -47,6 +47,7 @@ struct RunOptions {
     bool virtual_clock = false;
     bool camera_auto = false;  // simulated DIGITs: auto exposure and white balance on
     std::optional<std::string> replay, record, out;
+    bool realtime = false;  // --realtime: a replay at the pace it was recorded
     int background_frames = 0;
     // Skipping: tiles unless --skip says otherwise or there is no
     // background to compare with (--background-frames 0 or 1).
@@ -70,6 +71,7 @@ struct RunOptions {
     // (the serials: digits, from --sensor; empty: the first host's).
     bool source_ros2 = false;
     double startup_timeout_s = 60;  // --startup-timeout (RigConfig::startup_timeout_s)
+    int source_queue = 4;           // --queue: cycles each remote sensor keeps (RemoteRigOptions::queue_cycles)
 };
 
 inline constexpr const char* kDefaultSequence = "15,15,15+0,15,0";

@@ -44,6 +44,10 @@ RunSensors replayed_sensors(const RunOptions& options, std::shared_ptr<const Dat
 // o.startup_timeout_s); their sequence and background count adopted into o.
 RunSensors remote_sensors(RunOptions& o, const Args& args);
 
+// With --source ros2, summary.json's account of what each sensor's capture
+// host sent (", \"source\": {...}"); otherwise "".
+std::string source_summary(const RunSensors& sensors);
+
 // A replayed sensor that delivered nothing in a cycle in which the recorded
 // run also got nothing from it gets the recorded status and message, so the
 // replay reports what the recording did.

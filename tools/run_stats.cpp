@@ -82,7 +82,7 @@ std::string RunStats::progress_line(std::optional<int> target) const {
            fixed(last_fuse_s_ * 1e3, 1) + " ms, write " + fixed(last_write_s_ * 1e3, 1) + " ms";
 }
 
-std::string RunStats::summary_json(const Rig& rig) const {
+std::string RunStats::summary_json(const Rig& rig, const std::string& source) const {
     const double wall = std::max(wall_s(), 1e-9);
     const double n = double(std::max<std::uint64_t>(cycles_, 1));
     const std::vector<double> fps = sensor_clock_fps();
@@ -107,7 +107,7 @@ std::string RunStats::summary_json(const Rig& rig) const {
            ", \"threshold\": " + json_number(skip_.threshold) +
            ", \"idle_fraction\": " + json_number(double(idle_) / double(std::max<std::uint64_t>(fused_, 1))) +
            ", \"fused_fraction\": " + json_number(fused_ ? fused_fraction_sum_ / double(fused_) : 1.0) +
-           "}, \"switch_timing\": {" + timings + "}, \"errors\": [" + errors + "]}";
+           "}, \"switch_timing\": {" + timings + "}" + source + ", \"errors\": [" + errors + "]}";
 }
 
 }  // namespace vkfuse::cli

@@ -31,7 +31,8 @@ public:
     // clock), mean stage latency, skipping (the policy, and the shares of
     // sensor-cycles idle and of tiles fused), each sensor's switch timing,
     // distinct errors.
-    std::string summary_json(const Rig& rig) const;
+    // source: members that say where the frames came from (", \"source\": {...}"), or "".
+    std::string summary_json(const Rig& rig, const std::string& source = "") const;
 
 private:
     struct PerSensor {

@@ -133,8 +133,10 @@ RemoteRig::~RemoteRig() = default;
 
 const RemoteDescription& RemoteRig::description() const { return impl_->description; }
 
-std::vector<std::shared_ptr<Sensor>> RemoteRig::sensors() const {
-    return {impl_->sensors.begin(), impl_->sensors.end()};
+std::vector<RigSensor> RemoteRig::sensors() const {
+    std::vector<RigSensor> out;
+    for (const auto& s : impl_->sensors) out.push_back({s, s->clock()});
+    return out;
 }
 
 RemoteCounts RemoteRig::counts(std::size_t sensor) const { return impl_->sensors.at(sensor)->counts(); }

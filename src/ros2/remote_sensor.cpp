@@ -3,6 +3,7 @@
 #include "ros2/remote_sensor.hpp"
 
 #include <algorithm>
+#include <thread>
 
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/ros2/publisher.hpp"
@@ -18,8 +19,6 @@ constexpr auto kSlice = std::chrono::milliseconds(100);
 // A cycle-less second: the sensor is reported late (Error(Timeout)) and the
 // rig goes on without it until it delivers.
 constexpr auto kQuiet = std::chrono::seconds(1);
-// Cycles a sensor keeps (RemoteRigOptions::queue_bytes).
-constexpr std::uint64_t kMinQueueCycles = 2, kMaxQueueCycles = 16;
 
 // One sample taken on loan from a reader, returned when this goes.
 template <class Message>
@@ -45,7 +44,18 @@ private:
     dds_return_t n_ = 0;
 };
 
+double system_seconds() {
+    return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 }  // namespace
+
+double RemoteClock::now() const { return system_seconds() + offset_.load(); }
+
+void RemoteClock::wait_until(double seconds) {
+    const double left = seconds - now();
+    if (left > 0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
+}
 
 RemoteSensor::RemoteSensor(std::shared_ptr<RemoteDomain> domain, SensorContract contract, const RemoteRigOptions& options)
     : domain_(std::move(domain)),
@@ -54,8 +64,9 @@ RemoteSensor::RemoteSensor(std::shared_ptr<RemoteDomain> domain, SensorContract 
       startup_timeout_s_(options.startup_timeout_s) {
     const std::uint64_t cycle_bytes = 3ull * std::uint64_t(contract_.info.width) * std::uint64_t(contract_.info.height) *
                                       contract_.sequence.size();
-    const auto depth = int(std::clamp<std::uint64_t>(options.queue_bytes / std::max<std::uint64_t>(cycle_bytes, 1),
-                                                     kMinQueueCycles, kMaxQueueCycles));
+    const auto depth = int(std::max<std::uint64_t>(
+        1, std::min<std::uint64_t>(std::uint64_t(std::max(options.queue_cycles, 1)),
+                                   options.queue_bytes / std::max<std::uint64_t>(cycle_bytes, 1))));
     cycles_ = make_reader(domain_->participant, vkfuse_msgs_msg_dds__LitCycle__desc, topic_ + "/cycle",
                           TopicQos::reader(depth));
     background_ = make_reader(domain_->participant, vkfuse_msgs_msg_dds__Background__desc, topic_ + "/background",
@@ -170,6 +181,8 @@ std::optional<std::vector<Frame>> RemoteSensor::take_cycle() {
         }
     }
     last_cycle_ = msg.cycle;
+    const builtin_interfaces_msg_dds__Time_& stamp = msg.frames._buffer[0].image.header.stamp;
+    clock_->observe(frames.front().timestamp, double(stamp.sec) + double(stamp.nanosec) * 1e-9);
     std::lock_guard lock(counts_mutex_);
     ++counts_.cycles;
     return frames;

@@ -12,6 +12,7 @@
 
 #include "ros2/dds_entities.hpp"
 #include "ros2/remote_checks.hpp"
+#include "vkfuse/sensor/clock.hpp"
 #include "vkfuse/ros2/remote.hpp"
 
 namespace vkfuse::ros2 {
@@ -26,6 +27,20 @@ struct RemoteDomain {
     std::function<void(const std::string&)> report;
 };
 
+// A remote sensor's clock: now() is the sensor's time as its last cycle
+// dates it (frame timestamp against its capture stamp on the capture host's
+// system clock), so `now() - timestamp` is a frame's age.
+class RemoteClock : public Clock {
+public:
+    double now() const override;
+    void wait_until(double seconds) override;
+    // A frame stamped `timestamp` on the sensor's clock was exposed at `system` (s since the epoch).
+    void observe(double timestamp, double system) { offset_ = timestamp - system; }
+
+private:
+    std::atomic<double> offset_{0};
+};
+
 class RemoteSensor : public Sensor {
 public:
     RemoteSensor(std::shared_ptr<RemoteDomain> domain, SensorContract contract, const RemoteRigOptions& options);
@@ -33,6 +48,7 @@ public:
     void set_illumination(const Illumination& setting) override { requested_ = setting; }
     Frame grab() override;
     RemoteCounts counts() const;
+    std::shared_ptr<Clock> clock() const { return clock_; }
 
 private:
     // Waits (at most `wait`) for a sample on reader; false when none came.
@@ -45,6 +61,7 @@ private:
     void problem(const std::string& what);
 
     std::shared_ptr<RemoteDomain> domain_;
+    std::shared_ptr<RemoteClock> clock_ = std::make_shared<RemoteClock>();
     SensorContract contract_;
     std::string topic_;  // /vkfuse/<token>
     double startup_timeout_s_;

@@ -298,8 +298,10 @@ RigPublisher::RigPublisher(const RigTopics& rig, const PublisherOptions& options
 RigPublisher::~RigPublisher() {
     constexpr auto kLinger = std::chrono::seconds(2);
     const auto deadline = std::chrono::steady_clock::now() + kLinger;
-    std::vector<const DdsEntity*> writers{&impl_->diagnostics};
-    for (const auto* group : {&impl_->fused, &impl_->metrics, &impl_->cycles})
+    // Backgrounds and the description too: a fusion host that lost a
+    // fragment of either is still waiting for it.
+    std::vector<const DdsEntity*> writers{&impl_->description, &impl_->diagnostics};
+    for (const auto* group : {&impl_->backgrounds, &impl_->cycles, &impl_->fused, &impl_->metrics})
         for (const DdsEntity& w : *group) writers.push_back(&w);
     for (const DdsEntity* w : writers) {
         const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - std::chrono::steady_clock::now());
@@ -337,7 +339,7 @@ void RigPublisher::publish_background(std::size_t sensor, const Illumination& se
 }
 
 bool RigPublisher::has_subscribers(std::size_t sensor) const {
-    for (const auto* group : {&impl_->fused, &impl_->metrics, &impl_->cycles})
+    for (const auto* group : {&impl_->fused, &impl_->metrics, &impl_->cycles, &impl_->backgrounds})
         if (!group->empty() && matched_subscribers(group->at(sensor)) == 0) return false;
     return true;
 }

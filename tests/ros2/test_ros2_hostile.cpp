@@ -135,6 +135,7 @@ TEST(Ros2Hostile, BadSamplesAreRefusedCountedAndNeverHandedOut) {
     options.domain = domain;
     options.serials = {kSerial};
     options.startup_timeout_s = 30;
+    options.queue_cycles = 32;  // every sample sent is still there when the sensor is asked
     options.report = [&](const std::string& line) {
         std::lock_guard lock(lines_mutex);
         lines.push_back(line);
@@ -142,7 +143,7 @@ TEST(Ros2Hostile, BadSamplesAreRefusedCountedAndNeverHandedOut) {
     RemoteRig rig(options);
     ASSERT_EQ(rig.description().sensors.size(), 1u);
     EXPECT_EQ(rig.description().sequence, kSequence);
-    Sensor& sensor = *rig.sensors().front();
+    Sensor& sensor = *rig.sensors().front().sensor;
     // The background first, each setting's frames under it.
     for (const auto& [setting, values] : {std::pair{kSequence[0], std::vector<int>{10, 11}}, {kSequence[1], {20, 21}}})
         for (int v : values) {
@@ -218,7 +219,7 @@ TEST(Ros2Hostile, ABackgroundThatNeverComesEndsTheStartWithOneLine) {
     options.startup_timeout_s = 1;
     options.report = [](const std::string&) {};
     RemoteRig rig(options);
-    Sensor& sensor = *rig.sensors().front();
+    Sensor& sensor = *rig.sensors().front().sensor;
     sensor.set_illumination(kSequence[0]);
     try {
         sensor.grab();

@@ -122,8 +122,9 @@ public:
     // Sensors may call it from their own threads at once.
     void publish_background(std::size_t sensor, const Illumination& setting, const std::vector<Frame>& frames);
 
-    // Whether every topic sensor publishes each cycle (fused, metrics, or
-    // cycle) has a subscriber: what a caller may wait for before its first cycle.
+    // Whether every topic of sensor's (fused, metrics, or cycle and
+    // background) has a subscriber: what a caller may wait for before its
+    // first cycle.
     bool has_subscribers(std::size_t sensor) const;
     PublisherCounts counts() const;
 

@@ -10,9 +10,9 @@
 // the capture host's /vkfuse/rig (sizes, encoding, settings, serial, cycle
 // numbers) before a byte of it is used, and what fails is dropped, counted
 // and said in one line (at most one a second per sensor). Each sensor keeps
-// a few cycles (the newest: a fusion host that falls behind
-// skips cycles, counted, rather than fusing ever older ones; RemoteRigOptions::
-// queue_bytes), and DDS itself
+// a few cycles (the newest: a fusion host that falls behind skips cycles,
+// counted, rather than fusing ever older ones; RemoteRigOptions::queue_cycles),
+// and DDS itself
 // refuses samples over kMaxSampleBytes. DDS has no authentication here: any
 // host in the domain can publish; keep rigs on their own domain and network
 // interface (README, "Rigs across machines").
@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "vkfuse/rig/rig.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 #include "vkfuse/sensor/sensor.hpp"
 
@@ -40,9 +41,12 @@ struct RemoteRigOptions {
     // How long the start waits for the capture hosts' /vkfuse/rig, and then
     // each sensor for its background.
     double startup_timeout_s = 60;
-    // What each sensor keeps of cycles received and not yet fused, for a
-    // fusion host that falls behind for a moment: as many whole cycles as
-    // fit (2 at least, 16 at most); the oldest go first.
+    // Cycles each sensor keeps received and not yet fused, for a fusion host
+    // that falls behind for a moment; the oldest go first (and are counted
+    // missed). Few keep a lagging host's results fresh (a live rig); more
+    // ride out longer stalls (a replay that must arrive whole). Never more
+    // than fit queue_bytes, and at least 1.
+    int queue_cycles = 4;
     std::uint64_t queue_bytes = 64ull << 20;
     // Where each problem's line goes (at most one a second per sensor; the
     // rest are counted): "<serial>: <problem>". Empty: standard error.
@@ -83,8 +87,11 @@ public:
     // frames come first. grab() throws Error(Unplugged) when the capture host
     // is gone (within kLivelinessLease) and Error(Timeout) when nothing came
     // for a while, so a Rig reports the sensor and takes it back once its
-    // capture host publishes again.
-    std::vector<std::shared_ptr<Sensor>> sensors() const;
+    // capture host publishes again. Its clock maps the sensor's timestamps to
+    // the capture host's system clock (the stamps its frames carry), so what
+    // this host publishes is dated by capture, as the capture host dates it
+    // (hosts' clocks kept in step by NTP or PTP).
+    std::vector<RigSensor> sensors() const;
     RemoteCounts counts(std::size_t sensor) const;
 
     struct Impl;
