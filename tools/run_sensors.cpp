@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "paced_sensor.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {
@@ -66,7 +67,13 @@ RunSensors replayed_sensors(const RunOptions& o, std::shared_ptr<const Dataset> 
         auto sensor = std::make_shared<DatasetSensor>(dataset, record.info.serial, o.object);
         const std::size_t cycles = sensor->cycles_available(o.sequence);
         out.recorded_cycles = std::min(out.recorded_cycles.value_or(cycles), cycles);
-        out.rig.push_back({sensor, nullptr});
+        if (o.realtime) {
+            sensor->preload();  // the pace is the recording's, never the decoder's
+            auto paced = std::make_shared<PacedSensor>(sensor);
+            out.rig.push_back({paced, paced});
+        } else {
+            out.rig.push_back({sensor, nullptr});
+        }
     }
     return out;
 }

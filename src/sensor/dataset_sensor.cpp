@@ -33,6 +33,7 @@ struct DatasetSensor::Impl {
     std::map<std::string, Playlist> playlists;  // by setting text
     Playlist* current = nullptr;
     std::string current_setting;
+    std::map<const DatasetFrame*, Frame> decoded;  // preload()
 
     void add_takes(bool background) {
         for (const DatasetTake& t : record->takes) {
@@ -91,7 +92,28 @@ Frame DatasetSensor::grab() {
         throw Error(ErrorKind::InvalidArgument,
                     im.error("all " + std::to_string(im.current->frames.size()) + " frames recorded under LEDs " +
                              im.current_setting + " played"));
-    return load_frame(*im.dataset, *im.record, *im.current->frames[im.current->next++]);
+    const DatasetFrame* f = im.current->frames[im.current->next++];
+    if (auto it = im.decoded.find(f); it != im.decoded.end()) return it->second;
+    return load_frame(*im.dataset, *im.record, *f);
+}
+
+std::size_t DatasetSensor::frames() const {
+    std::size_t n = 0;
+    for (const auto& [setting, p] : impl_->playlists) n += p.frames.size();
+    return n;
+}
+
+std::uint64_t DatasetSensor::preload() {
+    auto& im = *impl_;
+    std::uint64_t bytes = 0;
+    for (const auto& [setting, p] : im.playlists)
+        for (const DatasetFrame* f : p.frames)
+            if (!im.decoded.count(f)) {
+                Frame frame = load_frame(*im.dataset, *im.record, *f);
+                bytes += frame.pixels.size();
+                im.decoded.emplace(f, std::move(frame));
+            }
+    return bytes;
 }
 
 std::size_t DatasetSensor::frames_lit_by(const Illumination& setting, bool background) const {
