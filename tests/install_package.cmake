@@ -7,10 +7,11 @@
 # With -DBENCH=ON, vkfuse-bench is installed too and runs from the prefix,
 # finding its peers there rather than in the source tree.
 # With -DPYTHON=<python3>, the Python module is imported from the prefix and
-# examples/fuse_pair.py runs against it.
+# examples/fuse_pair.py runs against it. With -DROS2=ON, examples/ros2_installed
+# is built with find_package(vkfuse COMPONENTS ros2) and looks for a capture host.
 #   cmake -DBUILD=<build dir> -DSOURCE=<source dir> -DWORK=<scratch dir> -DCXX=<compiler> -DBENCH=ON|OFF
-#         -DPYTHON=<python3 or OFF> -P install_package.cmake
-foreach(var BUILD SOURCE WORK CXX BENCH PYTHON)
+#         -DPYTHON=<python3 or OFF> -DROS2=ON|OFF -P install_package.cmake
+foreach(var BUILD SOURCE WORK CXX BENCH PYTHON ROS2)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "install_package.cmake: -D${var}=... is required")
   endif()
@@ -73,6 +74,18 @@ message(STATUS "caller's command buffer: ${last_output}")
 if(last_output MATCHES "DIFFER" OR NOT last_output MATCHES "timeline.*agree" OR
    NOT last_output MATCHES "validation messages: 0")
   message(FATAL_ERROR "the caller example said: ${last_output}")
+endif()
+
+# The optional ROS 2 library, asked for by component.
+if(ROS2)
+  run("configuring the ROS 2 example" ${CMAKE_COMMAND} -S ${SOURCE}/examples/ros2_installed -B ${WORK}/ros2_example
+      -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX})
+  run("building the ROS 2 example" ${CMAKE_COMMAND} --build ${WORK}/ros2_example)
+  run("running the ROS 2 example" ${WORK}/ros2_example/ros2_installed 231 0.2)
+  message(STATUS "vkfuse::ros2: ${last_output}")
+  if(NOT last_output MATCHES "no capture host: --source ros2: no capture host .* in ROS domain 231")
+    message(FATAL_ERROR "the ROS 2 example said: ${last_output}")
+  endif()
 endif()
 
 # pkg-config alone.
