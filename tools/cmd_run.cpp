@@ -121,7 +121,8 @@ void stage_outputs(Session& s, const Args& args) {
 // take. Per sensor, its fusion and frames are bounded like a `vkfuse fuse` of
 // K frames of that shape, plus three cycles of 8-bit frames in flight (the
 // capture, the mailbox, the last good cycle) and the background means.
-void require_replay_memory(const RunOptions& o, const Dataset& dataset) {
+void require_replay_memory(const RunOptions& o, const std::shared_ptr<const Dataset>& recording) {
+    const Dataset& dataset = *recording;
     const std::uint64_t K = o.sequence.size();
     std::uint64_t need = 0;
     for (const DatasetSensorRecord& r : dataset.sensors) {
@@ -133,9 +134,7 @@ void require_replay_memory(const RunOptions& o, const Dataset& dataset) {
         need += K * (3 * frame.samples() + frame.image_bytes());
         // --realtime holds every frame it plays, decoded.
         if (o.realtime)
-            need += DatasetSensor(std::shared_ptr<const Dataset>(&dataset, [](const Dataset*) {}), r.info.serial, o.object)
-                        .frames() *
-                    frame.samples();  // 8-bit samples
+            need += DatasetSensor(recording, r.info.serial, o.object).frames() * frame.samples();  // 8-bit samples
     }
     require_memory({(std::filesystem::path(dataset.directory) / "manifest.json").string()}, "replaying", need);
 }
@@ -173,7 +172,7 @@ Session prepare(const Args& args) {
     } else if (s.options.replay) {
         s.dataset = std::make_shared<const Dataset>(read_dataset(*s.options.replay));
         adopt_recording(s.options, args, *s.dataset);
-        require_replay_memory(s.options, *s.dataset);
+        require_replay_memory(s.options, s.dataset);
         s.sensors = replayed_sensors(s.options, s.dataset);
         if (s.sensors.recorded_cycles == 0)
             throw Error(ErrorKind::InvalidArgument, "--replay " + *s.options.replay + ": no full cycle of " +

@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
         }
     }
     try {
-        const DdsEntity participant(dds_create_participant(dds_domainid_t(domain), nullptr, nullptr), "participant");
+        const DdsEntity participant = make_participant(domain);
         const DdsEntity rig = make_reader(participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig",
                                           TopicQos::reader(16));
         std::map<std::string, DdsEntity> fused;  // by serial
@@ -59,11 +59,9 @@ int main(int argc, char** argv) {
         const double begun = system_seconds();
         const auto end = Clock::now() + std::chrono::duration<double>(seconds);
         while (Clock::now() < end) {
-            void* samples[1] = {nullptr};
-            dds_sample_info_t info{};
-            if (dds_take(rig.get(), samples, &info, 1, 1) > 0) {
-                const auto& d = *static_cast<const vkfuse_msgs_msg_dds__RigDescription_*>(samples[0]);
-                if (info.valid_data && d.fused)
+            if (const LoanedSample<vkfuse_msgs_msg_dds__RigDescription_> sample(rig); sample.any()) {
+                const auto& d = sample.message();
+                if (sample.valid() && d.fused)
                     for (std::uint32_t i = 0; i < d.sensors._length; ++i) {
                         const std::string serial = d.sensors._buffer[i].serial;
                         if (!fused.count(serial))
@@ -71,22 +69,20 @@ int main(int argc, char** argv) {
                                                               "/vkfuse/" + topic_token(serial) + "/fused",
                                                               TopicQos::reader(8)));
                     }
-                dds_return_loan(rig.get(), samples, 1);
             }
             bool any = false;
             for (auto& [serial, reader] : fused) {
-                void* s[1] = {nullptr};
-                dds_sample_info_t si{};
-                while (dds_take(reader.get(), s, &si, 1, 1) > 0) {
+                for (;;) {
+                    const LoanedSample<sensor_msgs_msg_dds__Image_> sample(reader);
+                    if (!sample.any()) break;
                     const double now = system_seconds();
-                    const auto& image = *static_cast<const sensor_msgs_msg_dds__Image_*>(s[0]);
-                    const double stamp = double(image.header.stamp.sec) + double(image.header.stamp.nanosec) * 1e-9;
-                    if (si.valid_data && stamp >= begun) {
+                    const auto& stamp_msg = sample.message().header.stamp;
+                    const double stamp = double(stamp_msg.sec) + double(stamp_msg.nanosec) * 1e-9;
+                    if (sample.valid() && stamp >= begun) {
                         ages.push_back((now - stamp) * 1e3);
                         ++images[serial];
                         any = true;
                     }
-                    dds_return_loan(reader.get(), s, 1);
                 }
             }
             if (!any) std::this_thread::sleep_for(std::chrono::milliseconds(1));

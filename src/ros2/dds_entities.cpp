@@ -5,6 +5,18 @@
 
 namespace vkfuse::ros2 {
 
+void check_domain(int domain) {
+    if (domain < 0 || domain > kMaxDomain)
+        throw Error(ErrorKind::InvalidArgument,
+                    "ROS domain " + std::to_string(domain) + ": expected 0.." + std::to_string(kMaxDomain));
+}
+
+DdsEntity make_participant(int domain) {
+    check_domain(domain);
+    return DdsEntity(dds_create_participant(dds_domainid_t(domain), nullptr, nullptr),
+                     "DDS participant in domain " + std::to_string(domain));
+}
+
 DdsEntity::DdsEntity(dds_entity_t entity, const std::string& what) {
     if (entity < 0) throw Error(ErrorKind::Device, what + ": " + dds_strretcode(entity));
     entity_ = entity;
@@ -23,16 +35,12 @@ DdsEntity& DdsEntity::operator=(DdsEntity&& other) noexcept {
     return *this;
 }
 
-TopicQos::TopicQos(int depth, bool latched) : qos_(dds_create_qos()) {
-    dds_qset_reliability(qos_, DDS_RELIABILITY_RELIABLE, kMaxBlocking);
-    dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, depth);
+TopicQos::TopicQos(int depth, bool latched) : TopicQos(depth) {
     dds_qset_durability(qos_, latched ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
     if (latched)
         dds_qset_durability_service(qos_, 0, DDS_HISTORY_KEEP_LAST, depth, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED,
                                     DDS_LENGTH_UNLIMITED);
-    // ROS 2 readers take plain CDR only, and samples are never disposed.
-    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
-    dds_qset_data_representation(qos_, 1, &xcdr1);
+    // Samples are never disposed.
     dds_qset_writer_data_lifecycle(qos_, false);
     // Asserted by the participant itself (no call of ours), so a subscriber
     // loses us within the lease however this process ends; a ROS 2
@@ -40,13 +48,18 @@ TopicQos::TopicQos(int depth, bool latched) : qos_(dds_create_qos()) {
     dds_qset_liveliness(qos_, DDS_LIVELINESS_AUTOMATIC, DDS_MSECS(kLivelinessLease.count()));
 }
 
-TopicQos TopicQos::reader(int depth) {
-    TopicQos q;
-    dds_qset_reliability(q.qos_, DDS_RELIABILITY_RELIABLE, kMaxBlocking);
-    dds_qset_history(q.qos_, DDS_HISTORY_KEEP_LAST, depth);
-    dds_qset_durability(q.qos_, DDS_DURABILITY_TRANSIENT_LOCAL);
+// What readers and writers share: reliable, keep last `depth`, plain CDR
+// (the only representation ROS 2 readers take).
+TopicQos::TopicQos(int depth) : qos_(dds_create_qos()) {
+    dds_qset_reliability(qos_, DDS_RELIABILITY_RELIABLE, kMaxBlocking);
+    dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, depth);
     const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
-    dds_qset_data_representation(q.qos_, 1, &xcdr1);
+    dds_qset_data_representation(qos_, 1, &xcdr1);
+}
+
+TopicQos TopicQos::reader(int depth) {
+    TopicQos q(depth);
+    dds_qset_durability(q.qos_, DDS_DURABILITY_TRANSIENT_LOCAL);
     return q;
 }
 
@@ -77,6 +90,17 @@ DdsEntity make_reader(const DdsEntity& participant, const dds_topic_descriptor_t
     const std::string dds_name = "rt" + ros_name;
     return DdsEntity(dds_create_reader(participant.get(), topic_of(participant, type, dds_name), qos.get(), nullptr),
                      "DDS reader of " + dds_name);
+}
+
+DataWait::DataWait(const DdsEntity& participant, const DdsEntity& reader)
+    : condition_(dds_create_readcondition(reader.get(), DDS_ANY_STATE), "DDS read condition"),
+      waitset_(dds_create_waitset(participant.get()), "DDS wait set") {
+    const dds_return_t attached = dds_waitset_attach(waitset_.get(), condition_.get(), 0);
+    if (attached < 0) throw Error(ErrorKind::Device, std::string("DDS wait set: ") + dds_strretcode(attached));
+}
+
+bool DataWait::wait(std::chrono::nanoseconds wait) const {
+    return dds_waitset_wait(waitset_.get(), nullptr, 0, wait.count()) > 0;
 }
 
 int matched_subscribers(const DdsEntity& writer) {

@@ -3,6 +3,7 @@
 #pragma once
 #include <dds/dds.h>
 
+#include <chrono>
 #include <string>
 
 namespace vkfuse::ros2 {
@@ -26,6 +27,12 @@ private:
     dds_entity_t entity_ = 0;
 };
 
+// Throws Error(InvalidArgument) "ROS domain N: expected 0..232" for a
+// domain outside the RTPS port range.
+void check_domain(int domain);
+// A participant in ROS 2 domain `domain` (checked); Error(Device) names what DDS refused.
+DdsEntity make_participant(int domain);
+
 // How long a reliable writer may wait for a slow subscriber to acknowledge
 // what it holds before the sample is dropped (and counted): Cyclone's own
 // default. ROS 2 waits forever; a rig is held up by a stalled subscriber for
@@ -48,7 +55,7 @@ public:
     const dds_qos_t* get() const { return qos_; }
 
 private:
-    TopicQos() : qos_(dds_create_qos()) {}
+    explicit TopicQos(int depth);
     dds_qos_t* qos_;
 };
 
@@ -60,6 +67,42 @@ DdsEntity make_writer(const DdsEntity& participant, const dds_topic_descriptor_t
 // A reader of `type` on ROS 2 topic `ros_name`.
 DdsEntity make_reader(const DdsEntity& participant, const dds_topic_descriptor_t& type, const std::string& ros_name,
                       const TopicQos& qos);
+
+// A wait for a reader's samples: a read condition in a wait set of the
+// reader's participant, made once and waited on as often as needed.
+class DataWait {
+public:
+    DataWait(const DdsEntity& participant, const DdsEntity& reader);
+    // Whether the reader holds a sample now or one came within `wait`.
+    bool wait(std::chrono::nanoseconds wait) const;
+
+private:
+    DdsEntity condition_, waitset_;
+};
+
+// The reader's next sample, taken on loan and returned when this goes.
+template <class Message>
+class LoanedSample {
+public:
+    explicit LoanedSample(const DdsEntity& reader) : reader_(reader.get()) {
+        n_ = dds_take(reader_, samples_, &info_, 1, 1);
+    }
+    ~LoanedSample() {
+        if (n_ > 0) dds_return_loan(reader_, samples_, n_);
+    }
+    LoanedSample(const LoanedSample&) = delete;
+    LoanedSample& operator=(const LoanedSample&) = delete;
+    bool any() const { return n_ > 0; }                       // a sample, or a notice of a writer's state
+    bool valid() const { return n_ > 0 && info_.valid_data; }  // a sample with data
+    const Message& message() const { return *static_cast<const Message*>(samples_[0]); }
+    const dds_sample_info_t& info() const { return info_; }
+
+private:
+    dds_entity_t reader_;
+    void* samples_[1] = {nullptr};
+    dds_sample_info_t info_{};
+    dds_return_t n_ = 0;
+};
 
 // Subscribers matched to writer (0 where DDS cannot say).
 int matched_subscribers(const DdsEntity& writer);

@@ -13,27 +13,24 @@ LedSettings::LedSettings(const IlluminationSequence& sequence) {
     for (auto& l : levels) messages.push_back({sequence_of<dds_sequence_uint8>(l)});
 }
 
-LitFrames::LitFrames(const std::vector<Frame>& frames, const std::vector<builtin_interfaces_msg_dds__Time_>& stamps,
-                     const std::vector<const vkfuse_msgs_msg_dds__LedSetting_*>& settings, const std::string& serial) {
+void LitFrames::add(const Frame& frame, const builtin_interfaces_msg_dds__Time_& stamp,
+                    const vkfuse_msgs_msg_dds__LedSetting_& setting) {
     static const std::string rgb8 = "rgb8";
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-        const Frame& f = frames[k];
-        vkfuse_msgs_msg_dds__LitFrame_ m{};
-        m.image.header = {stamps[k], text(serial)};
-        m.image.height = std::uint32_t(f.height);
-        m.image.width = std::uint32_t(f.width);
-        m.image.encoding = text(rgb8);
-        m.image.is_bigendian = 0;
-        m.image.step = std::uint32_t(f.width) * 3;
-        // The frame's bytes themselves: dds_write serializes without writing.
-        m.image.data._maximum = m.image.data._length = std::uint32_t(f.pixels.size());
-        m.image.data._buffer = const_cast<std::uint8_t*>(f.pixels.data());
-        m.image.data._release = false;
-        m.setting = *settings[k];
-        m.index = f.index;
-        m.timestamp = f.timestamp;
-        messages.push_back(m);
-    }
+    vkfuse_msgs_msg_dds__LitFrame_ m{};
+    m.image.header = {stamp, text(serial_)};
+    m.image.height = std::uint32_t(frame.height);
+    m.image.width = std::uint32_t(frame.width);
+    m.image.encoding = text(rgb8);
+    m.image.is_bigendian = 0;
+    m.image.step = std::uint32_t(frame.width) * 3;
+    // The frame's bytes themselves: dds_write serializes without writing.
+    m.image.data._maximum = m.image.data._length = std::uint32_t(frame.pixels.size());
+    m.image.data._buffer = const_cast<std::uint8_t*>(frame.pixels.data());
+    m.image.data._release = false;
+    m.setting = setting;
+    m.index = frame.index;
+    m.timestamp = frame.timestamp;
+    messages.push_back(m);
 }
 
 }  // namespace vkfuse::ros2

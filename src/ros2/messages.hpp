@@ -1,6 +1,6 @@
-// ros2/messages.hpp - building and reading the C types idlc generates for
-// ROS 2's messages: times, strings, sequences, LED settings and lit frames,
-// written one way for the publisher and read one way for the remote sensor.
+// ros2/messages.hpp - building the C types idlc generates for ROS 2's
+// messages: times, strings, sequences, LED settings and lit frames (read
+// back, and checked, in ros2/remote_checks.hpp).
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -39,14 +39,19 @@ struct LedSettings {
     LedSettings& operator=(const LedSettings&) = delete;
 };
 
-// Frames as LitFrame messages pointing into them (rgb8, the frames' own
-// bytes; no copy): each frame's setting, stamp and serial given alongside.
+// Frames of one sensor as LitFrame messages pointing into them (rgb8, the
+// frames' own bytes; no copy).
 struct LitFrames {
     std::vector<vkfuse_msgs_msg_dds__LitFrame_> messages;
 
-    // stamps[k] and settings[k] for frames[k]; frames and settings outlive this.
-    LitFrames(const std::vector<Frame>& frames, const std::vector<builtin_interfaces_msg_dds__Time_>& stamps,
-              const std::vector<const vkfuse_msgs_msg_dds__LedSetting_*>& settings, const std::string& serial);
+    explicit LitFrames(const std::string& serial) : serial_(serial) {}
+    // frame (which, with the serial and setting's levels, outlives this)
+    // exposed at stamp under setting.
+    void add(const Frame& frame, const builtin_interfaces_msg_dds__Time_& stamp,
+             const vkfuse_msgs_msg_dds__LedSetting_& setting);
+
+private:
+    const std::string& serial_;
 };
 
 }  // namespace vkfuse::ros2

@@ -1,7 +1,6 @@
 // Checks of what a fusion host receives (ros2/remote_checks.hpp).
 #include "ros2/remote_checks.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -68,13 +67,6 @@ std::string seconds_text(double seconds) {
     char text[32];
     std::snprintf(text, sizeof text, "%g s", seconds);
     return text;
-}
-
-IlluminationSequence distinct_settings(const IlluminationSequence& sequence) {
-    IlluminationSequence out;
-    for (const Illumination& s : sequence)
-        if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
-    return out;
 }
 
 std::string check_description(const vkfuse_msgs_msg_dds__RigDescription_& msg, DescribedRig& out) {

@@ -43,7 +43,4 @@ std::string check_background(const vkfuse_msgs_msg_dds__Background_& msg, const 
 // "1 s", "0.5 s": a time in a line.
 std::string seconds_text(double seconds);
 
-// The sequence's settings, each once, in order of first use.
-IlluminationSequence distinct_settings(const IlluminationSequence& sequence);
-
 }  // namespace vkfuse::ros2

@@ -42,19 +42,14 @@ struct RemoteRig::Impl {
 };
 
 RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<Impl>()) {
-    if (options.domain < 0 || options.domain > kMaxDomain)
-        throw Error(ErrorKind::InvalidArgument, "ROS domain " + std::to_string(options.domain) + ": expected 0.." +
-                                                    std::to_string(kMaxDomain));
+    check_domain(options.domain);  // before the domain is made with it
     RemoteDomain& d = *impl_->domain;
     d.report = options.report ? options.report : to_stderr;
     d.domain = bounded_domain(options.domain);
-    d.participant = DdsEntity(dds_create_participant(dds_domainid_t(options.domain), nullptr, nullptr),
-                              "DDS participant in domain " + std::to_string(options.domain));
+    d.participant = make_participant(options.domain);
     const DdsEntity reader = make_reader(d.participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig",
                                          TopicQos::reader(kDescriptionDepth));
-    const DdsEntity condition(dds_create_readcondition(reader.get(), DDS_ANY_STATE), "DDS read condition");
-    const DdsEntity waitset(dds_create_waitset(d.participant.get()), "DDS wait set");
-    dds_waitset_attach(waitset.get(), condition.get(), 0);
+    const DataWait described(d.participant, reader);
 
     // Serial -> what its capture host said, the first description of it heard.
     std::map<std::string, std::pair<SensorInfo, DescribedRig>> heard;
@@ -69,12 +64,10 @@ RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<I
         return true;
     };
     while (!complete()) {
-        void* samples[1] = {nullptr};
-        dds_sample_info_t info{};
-        const dds_return_t n = dds_take(reader.get(), samples, &info, 1, 1);
-        if (n > 0) {
-            const auto& msg = *static_cast<const vkfuse_msgs_msg_dds__RigDescription_*>(samples[0]);
-            if (info.valid_data && msg.frames && !msg.fused) {
+        const LoanedSample<vkfuse_msgs_msg_dds__RigDescription_> sample(reader);
+        if (sample.any()) {
+            const auto& msg = sample.message();
+            if (sample.valid() && msg.frames && !msg.fused) {
                 DescribedRig rig;
                 if (std::string p = check_description(msg, rig); !p.empty()) {
                     refused = p;
@@ -88,7 +81,6 @@ RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<I
                     if (first_host.empty()) first_host = serials;
                 }
             }
-            dds_return_loan(reader.get(), samples, n);
             continue;
         }
         if (Clock::now() >= deadline) {
@@ -104,7 +96,7 @@ RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<I
                             seconds_text(options.startup_timeout_s) +
                             (refused.empty() ? "" : " (refused: " + refused + ")"));
         }
-        dds_waitset_wait(waitset.get(), nullptr, 0, DDS_MSECS(100));
+        described.wait(std::chrono::milliseconds(100));
     }
 
     const std::vector<std::string>& chosen = options.serials.empty() ? first_host : options.serials;

@@ -20,32 +20,17 @@ constexpr auto kSlice = std::chrono::milliseconds(100);
 // rig goes on without it until it delivers.
 constexpr auto kQuiet = std::chrono::seconds(1);
 
-// One sample taken on loan from a reader, returned when this goes.
-template <class Message>
-class Taken {
-public:
-    explicit Taken(const DdsEntity& reader) : reader_(reader.get()) {
-        n_ = dds_take(reader_, samples_, &info_, 1, 1);
-    }
-    ~Taken() {
-        if (n_ > 0) dds_return_loan(reader_, samples_, n_);
-    }
-    Taken(const Taken&) = delete;
-    Taken& operator=(const Taken&) = delete;
-    bool any() const { return n_ > 0; }
-    bool valid() const { return n_ > 0 && info_.valid_data; }
-    const Message& message() const { return *static_cast<const Message*>(samples_[0]); }
-    const dds_sample_info_t& info() const { return info_; }
-
-private:
-    dds_entity_t reader_;
-    void* samples_[1] = {nullptr};
-    dds_sample_info_t info_{};
-    dds_return_t n_ = 0;
-};
-
 double system_seconds() {
     return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// Whole cycles the sensor keeps: queue_cycles, as far as queue_bytes hold them, 1 at least.
+int queue_depth(const SensorContract& contract, const RemoteRigOptions& options) {
+    const std::uint64_t cycle_bytes =
+        3ull * std::uint64_t(contract.info.width) * std::uint64_t(contract.info.height) * contract.sequence.size();
+    return int(std::max<std::uint64_t>(
+        1, std::min<std::uint64_t>(std::uint64_t(std::max(options.queue_cycles, 1)),
+                                   options.queue_bytes / std::max<std::uint64_t>(cycle_bytes, 1))));
 }
 
 }  // namespace
@@ -61,22 +46,25 @@ RemoteSensor::RemoteSensor(std::shared_ptr<RemoteDomain> domain, SensorContract 
     : domain_(std::move(domain)),
       contract_(std::move(contract)),
       topic_("/vkfuse/" + topic_token(contract_.info.serial)),
-      startup_timeout_s_(options.startup_timeout_s) {
-    const std::uint64_t cycle_bytes = 3ull * std::uint64_t(contract_.info.width) * std::uint64_t(contract_.info.height) *
-                                      contract_.sequence.size();
-    const auto depth = int(std::max<std::uint64_t>(
-        1, std::min<std::uint64_t>(std::uint64_t(std::max(options.queue_cycles, 1)),
-                                   options.queue_bytes / std::max<std::uint64_t>(cycle_bytes, 1))));
-    cycles_ = make_reader(domain_->participant, vkfuse_msgs_msg_dds__LitCycle__desc, topic_ + "/cycle",
-                          TopicQos::reader(depth));
-    background_ = make_reader(domain_->participant, vkfuse_msgs_msg_dds__Background__desc, topic_ + "/background",
-                              TopicQos::reader(1));
-    background_done_ = contract_.background_frames == 0;
-}
+      startup_timeout_s_(options.startup_timeout_s),
+      cycles_(make_reader(domain_->participant, vkfuse_msgs_msg_dds__LitCycle__desc, topic_ + "/cycle",
+                          TopicQos::reader(queue_depth(contract_, options)))),
+      background_(make_reader(domain_->participant, vkfuse_msgs_msg_dds__Background__desc, topic_ + "/background",
+                              TopicQos::reader(1))),
+      cycle_arrived_(domain_->participant, cycles_),
+      background_arrived_(domain_->participant, background_),
+      background_done_(contract_.background_frames == 0) {}
 
 RemoteCounts RemoteSensor::counts() const {
     std::lock_guard lock(counts_mutex_);
     return counts_;
+}
+
+void RemoteSensor::say_now_and_then(const std::string& what) {
+    const auto now = Clock::now();
+    if (now - last_line_ < std::chrono::seconds(1)) return;
+    last_line_ = now;
+    domain_->report(contract_.info.serial + ": " + what);
 }
 
 void RemoteSensor::problem(const std::string& what) {
@@ -84,25 +72,13 @@ void RemoteSensor::problem(const std::string& what) {
         std::lock_guard lock(counts_mutex_);
         ++counts_.malformed;
     }
-    const auto now = Clock::now();
-    if (now - last_line_ < std::chrono::seconds(1)) return;
-    last_line_ = now;
-    domain_->report(contract_.info.serial + ": " + what + " (" + topic_ + "; refused)");
+    say_now_and_then(what + " (" + topic_ + "; refused)");
 }
 
-bool RemoteSensor::wait_for_data(const DdsEntity& reader, Clock::duration wait) {
-    const DdsEntity condition(dds_create_readcondition(reader.get(), DDS_ANY_STATE), "DDS read condition");
-    const DdsEntity waitset(dds_create_waitset(domain_->participant.get()), "DDS wait set");
-    dds_waitset_attach(waitset.get(), condition.get(), 0);
-    const dds_return_t n =
-        dds_waitset_wait(waitset.get(), nullptr, 0, std::chrono::duration_cast<std::chrono::nanoseconds>(wait).count());
-    return n > 0;
-}
-
-bool RemoteSensor::publisher_alive() {
+std::optional<std::int32_t> RemoteSensor::live_publishers() const {
     dds_liveliness_changed_status_t status{};
-    if (dds_get_liveliness_changed_status(cycles_.get(), &status) != DDS_RETCODE_OK) return alive_;
-    return status.alive_count > 0;
+    if (dds_get_liveliness_changed_status(cycles_.get(), &status) != DDS_RETCODE_OK) return std::nullopt;
+    return status.alive_count;
 }
 
 Frame RemoteSensor::next_background_frame() {
@@ -111,7 +87,7 @@ Frame RemoteSensor::next_background_frame() {
                                                  std::chrono::duration<double>(startup_timeout_s_));
         for (;;) {
             if (domain_->closing) throw Error(ErrorKind::Timeout, contract_.info.serial + ": closing");
-            Taken<vkfuse_msgs_msg_dds__Background_> sample(background_);
+            LoanedSample<vkfuse_msgs_msg_dds__Background_> sample(background_);
             if (sample.valid()) {
                 const std::string p = check_background(sample.message(), contract_, background_frames_);
                 if (p.empty()) break;
@@ -123,7 +99,7 @@ Frame RemoteSensor::next_background_frame() {
                 throw Error(ErrorKind::Timeout, contract_.info.serial + ": no background from its capture host within " +
                                                     seconds_text(startup_timeout_s_) + " (" + topic_ +
                                                     "/background)");
-            wait_for_data(background_, kSlice);
+            background_arrived_.wait(kSlice);
         }
         background_served_.assign(background_frames_.size(), 0);
     }
@@ -143,14 +119,12 @@ Frame RemoteSensor::next_background_frame() {
 }
 
 std::optional<std::vector<Frame>> RemoteSensor::take_cycle() {
-    Taken<vkfuse_msgs_msg_dds__LitCycle_> sample(cycles_);
+    LoanedSample<vkfuse_msgs_msg_dds__LitCycle_> sample(cycles_);
     if (!sample.valid()) return std::nullopt;
     const dds_instance_handle_t from = sample.info().publication_handle;
     const vkfuse_msgs_msg_dds__LitCycle_& msg = sample.message();
     if (publication_ != 0 && from != publication_) {
-        dds_liveliness_changed_status_t status{};
-        dds_get_liveliness_changed_status(cycles_.get(), &status);
-        if (status.alive_count > 1) {
+        if (live_publishers().value_or(0) > 1) {
             problem("a second publisher claims this serial while the first is alive");
             return std::nullopt;
         }
@@ -173,12 +147,8 @@ std::optional<std::vector<Frame>> RemoteSensor::take_cycle() {
             std::lock_guard lock(counts_mutex_);
             counts_.missed += missed;
         }
-        const auto now = Clock::now();
-        if (now - last_line_ >= std::chrono::seconds(1)) {
-            last_line_ = now;
-            domain_->report(contract_.info.serial + ": " + std::to_string(missed) + " cycle" + (missed > 1 ? "s" : "") +
-                            " before cycle " + std::to_string(msg.cycle) + " never arrived whole (" + topic_ + "/cycle)");
-        }
+        say_now_and_then(std::to_string(missed) + " cycle" + (missed > 1 ? "s" : "") + " before cycle " +
+                         std::to_string(msg.cycle) + " never arrived whole (" + topic_ + "/cycle)");
     }
     last_cycle_ = msg.cycle;
     const builtin_interfaces_msg_dds__Time_& stamp = msg.frames._buffer[0].image.header.stamp;
@@ -192,7 +162,8 @@ std::vector<Frame> RemoteSensor::next_cycle() {
     const auto quiet_until = Clock::now() + kQuiet;
     for (;;) {
         if (domain_->closing) throw Error(ErrorKind::Timeout, contract_.info.serial + ": closing");
-        const bool alive = publisher_alive();
+        const std::optional<std::int32_t> live = live_publishers();
+        const bool alive = live ? *live > 0 : alive_;
         if (alive_ && !alive) {
             alive_ = false;
             publication_ = 0;
@@ -218,7 +189,7 @@ std::vector<Frame> RemoteSensor::next_cycle() {
             throw Error(ErrorKind::Timeout, contract_.info.serial + ": no cycle from its capture host for " +
                                                 std::to_string(kQuiet.count()) + " s");
         }
-        wait_for_data(cycles_, kSlice);
+        cycle_arrived_.wait(kSlice);
     }
 }
 

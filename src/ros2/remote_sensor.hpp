@@ -51,13 +51,15 @@ public:
     std::shared_ptr<Clock> clock() const { return clock_; }
 
 private:
-    // Waits (at most `wait`) for a sample on reader; false when none came.
-    bool wait_for_data(const DdsEntity& reader, std::chrono::steady_clock::duration wait);
     Frame next_background_frame();
     std::vector<Frame> next_cycle();
     // A sound cycle from the reader's next sample, or nothing (counted).
     std::optional<std::vector<Frame>> take_cycle();
-    bool publisher_alive();
+    // Publishers of the cycle topic alive now (nullopt where DDS cannot say).
+    std::optional<std::int32_t> live_publishers() const;
+    // "<serial>: <what>", unless a line went out less than a second ago.
+    void say_now_and_then(const std::string& what);
+    // A sample refused: counted, and said now and then.
     void problem(const std::string& what);
 
     std::shared_ptr<RemoteDomain> domain_;
@@ -65,7 +67,8 @@ private:
     SensorContract contract_;
     std::string topic_;  // /vkfuse/<token>
     double startup_timeout_s_;
-    DdsEntity cycles_, background_, waitset_;
+    DdsEntity cycles_, background_;
+    DataWait cycle_arrived_, background_arrived_;
     Illumination requested_;
     // The background, by setting, until every frame of it was handed out.
     std::vector<std::pair<Illumination, std::vector<Frame>>> background_frames_;

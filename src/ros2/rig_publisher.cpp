@@ -8,7 +8,6 @@
 #include <cstring>
 #include <limits>
 #include <map>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -76,10 +75,15 @@ struct RigPublisher::Impl {
     // Per sensor, the background frames of the settings so far (touched only
     // by that sensor's thread), until every distinct setting has come.
     std::vector<std::vector<std::pair<Illumination, std::vector<Frame>>>> background_takes;
-    std::size_t distinct_settings = 0;
+    const std::size_t distinct_settings;
 
     Impl(const RigTopics& r, const PublisherOptions& o, CaptureTime t)
-        : rig(r), options(o), method(method_label(r.fusion)), settings(r.sequence), capture_time(std::move(t)) {
+        : rig(r),
+          options(o),
+          method(method_label(r.fusion)),
+          settings(r.sequence),
+          capture_time(std::move(t)),
+          distinct_settings(vkfuse::distinct_settings(r.sequence).size()) {
         std::map<std::string, std::string> serial_of;
         for (const SensorInfo& s : rig.sensors) {
             const std::string token = topic_token(s.serial);
@@ -88,11 +92,7 @@ struct RigPublisher::Impl {
                                                             " both name topics /vkfuse/" + token);
             tokens.push_back(token);
         }
-        if (options.domain < 0 || options.domain > kMaxDomain)
-            throw Error(ErrorKind::InvalidArgument, "ROS domain " + std::to_string(options.domain) + ": expected 0.." +
-                                                        std::to_string(kMaxDomain));
-        participant = DdsEntity(dds_create_participant(dds_domainid_t(options.domain), nullptr, nullptr),
-                                "DDS participant in domain " + std::to_string(options.domain));
+        participant = make_participant(options.domain);
         const TopicQos image_qos(kImageDepth, true), metrics_qos(kMetricsDepth, true),
             diagnostics_qos(kDiagnosticsDepth, false), rig_qos(kRigDepth, true), cycle_qos(kCycleDepth, true),
             background_qos(kBackgroundDepth, true);
@@ -110,9 +110,6 @@ struct RigPublisher::Impl {
             }
         }
         background_takes.resize(tokens.size());
-        std::set<std::string> distinct;
-        for (const Illumination& setting : rig.sequence) distinct.insert(setting.to_string());
-        distinct_settings = distinct.size();
         diagnostics = make_writer(participant, diagnostic_msgs_msg_dds__DiagnosticArray__desc, "/diagnostics", diagnostics_qos);
         description = make_writer(participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig", rig_qos);
         describe_rig();
@@ -137,9 +134,8 @@ struct RigPublisher::Impl {
 
     void publish_cycle(std::size_t i, std::uint64_t cycle, const SensorCycle& s,
                        const std::vector<builtin_interfaces_msg_dds__Time_>& frame_stamps) {
-        std::vector<const vkfuse_msgs_msg_dds__LedSetting_*> lit;
-        for (std::size_t k = 0; k < s.frames.size(); ++k) lit.push_back(&settings.messages.at(k));
-        LitFrames frames(s.frames, frame_stamps, lit, s.serial);
+        LitFrames frames(s.serial);
+        for (std::size_t k = 0; k < s.frames.size(); ++k) frames.add(s.frames[k], frame_stamps[k], settings.messages.at(k));
         vkfuse_msgs_msg_dds__LitCycle_ msg{};
         msg.header = {frame_stamps.front(), text(s.serial)};
         msg.serial = text(s.serial);
@@ -152,21 +148,17 @@ struct RigPublisher::Impl {
         auto& takes = background_takes.at(i);
         takes.emplace_back(setting, frames);
         if (takes.size() < distinct_settings) return;
-        // One message of every setting's frames, in sequence order.
-        std::vector<Frame> all;
-        std::vector<const vkfuse_msgs_msg_dds__LedSetting_*> lit;
+        // One message of every setting's frames, in the order they came
+        // (the sequence's), pointing at the frames taken.
+        const SensorInfo& sensor = rig.sensors[i];
+        LitFrames messages(sensor.serial);
         for (const auto& [taken, fs] : takes) {
             const auto k = std::size_t(std::find(rig.sequence.begin(), rig.sequence.end(), taken) - rig.sequence.begin());
-            for (const Frame& f : fs) {
-                all.push_back(f);
-                lit.push_back(&settings.messages.at(k));
-            }
+            for (const Frame& f : fs) messages.add(f, stamp(i, f.timestamp), settings.messages.at(k));
         }
-        const SensorInfo& sensor = rig.sensors[i];
-        const auto frame_stamps = stamps(i, all);
-        LitFrames messages(all, frame_stamps, lit, sensor.serial);
         vkfuse_msgs_msg_dds__Background_ msg{};
-        msg.header = {frame_stamps.empty() ? stamp_of(std::chrono::system_clock::now()) : frame_stamps.front(),
+        msg.header = {messages.messages.empty() ? stamp_of(std::chrono::system_clock::now())
+                                                : messages.messages.front().image.header.stamp,
                       text(sensor.serial)};
         msg.serial = text(sensor.serial);
         msg.frames_per_setting = std::uint32_t(takes.front().second.size());

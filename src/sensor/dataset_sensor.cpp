@@ -103,17 +103,11 @@ std::size_t DatasetSensor::frames() const {
     return n;
 }
 
-std::uint64_t DatasetSensor::preload() {
+void DatasetSensor::preload() {
     auto& im = *impl_;
-    std::uint64_t bytes = 0;
     for (const auto& [setting, p] : im.playlists)
         for (const DatasetFrame* f : p.frames)
-            if (!im.decoded.count(f)) {
-                Frame frame = load_frame(*im.dataset, *im.record, *f);
-                bytes += frame.pixels.size();
-                im.decoded.emplace(f, std::move(frame));
-            }
-    return bytes;
+            if (!im.decoded.count(f)) im.decoded.emplace(f, load_frame(*im.dataset, *im.record, *f));
 }
 
 std::size_t DatasetSensor::frames_lit_by(const Illumination& setting, bool background) const {

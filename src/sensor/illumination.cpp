@@ -118,4 +118,11 @@ std::string to_string(const IlluminationSequence& sequence) {
     return out;
 }
 
+IlluminationSequence distinct_settings(const IlluminationSequence& sequence) {
+    IlluminationSequence out;
+    for (const Illumination& s : sequence)
+        if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
+    return out;
+}
+
 }  // namespace vkfuse

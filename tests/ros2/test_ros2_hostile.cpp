@@ -79,12 +79,12 @@ struct TestPublisher {
     template <class Edit>
     void send_cycle(std::uint64_t number, const std::vector<Frame>& frames, Edit edit,
                     const DdsEntity* writer = nullptr, std::string serial = kSerial) {
-        std::vector<builtin_interfaces_msg_dds__Time_> stamps(frames.size(), stamp_of(std::chrono::system_clock::now()));
-        std::vector<const vkfuse_msgs_msg_dds__LedSetting_*> lit;
-        for (std::size_t k = 0; k < frames.size(); ++k) lit.push_back(&settings.messages[k % settings.messages.size()]);
-        LitFrames messages(frames, stamps, lit, serial);
+        const auto stamp = stamp_of(std::chrono::system_clock::now());
+        LitFrames messages(serial);
+        for (std::size_t k = 0; k < frames.size(); ++k)
+            messages.add(frames[k], stamp, settings.messages[k % settings.messages.size()]);
         vkfuse_msgs_msg_dds__LitCycle_ msg{};
-        msg.header = {stamps.front(), text(serial)};
+        msg.header = {stamp, text(serial)};
         msg.serial = text(serial);
         msg.cycle = number;
         msg.frames = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LitFrame_>(messages.messages);
@@ -97,12 +97,11 @@ struct TestPublisher {
 
     void send_background() {
         std::vector<Frame> frames{frame_of(0, 10), frame_of(1, 11), frame_of(2, 20), frame_of(3, 21)};
-        std::vector<builtin_interfaces_msg_dds__Time_> stamps(4, stamp_of(std::chrono::system_clock::now()));
-        std::vector<const vkfuse_msgs_msg_dds__LedSetting_*> lit{&settings.messages[0], &settings.messages[0],
-                                                                 &settings.messages[1], &settings.messages[1]};
-        LitFrames messages(frames, stamps, lit, kSerial);
+        const auto stamp = stamp_of(std::chrono::system_clock::now());
+        LitFrames messages(kSerial);
+        for (std::size_t j = 0; j < frames.size(); ++j) messages.add(frames[j], stamp, settings.messages[j / 2]);
         vkfuse_msgs_msg_dds__Background_ msg{};
-        msg.header = {stamps.front(), text(kSerial)};
+        msg.header = {stamp, text(kSerial)};
         msg.serial = text(kSerial);
         msg.frames_per_setting = 2;
         msg.frames = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LitFrame_>(messages.messages);

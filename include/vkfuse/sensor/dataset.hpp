@@ -129,9 +129,9 @@ public:
     // the sensor missed included; otherwise the full cycles the takes hold.
     std::size_t cycles_available(const IlluminationSequence& sequence) const;
     // Decodes every frame it will play now, so grab() only copies: a replay
-    // that keeps the sensors' own pace never waits on a decoder. Returns the
-    // bytes held (frames() * height * width * 3).
-    std::uint64_t preload();
+    // that keeps the sensors' own pace never waits on a decoder. Holds
+    // frames() * height * width * 3 bytes.
+    void preload();
     // Frames it plays (background takes and the object's), for a preload's memory check.
     std::size_t frames() const;
 

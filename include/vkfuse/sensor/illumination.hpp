@@ -57,5 +57,8 @@ inline constexpr std::size_t kMaxSequenceSettings = 16;
 // more than kMaxSequenceSettings.
 IlluminationSequence parse_sequence(std::string_view text);
 std::string to_string(const IlluminationSequence& sequence);
+// The sequence's settings, each once, in order of first use (those a
+// background is taken under).
+IlluminationSequence distinct_settings(const IlluminationSequence& sequence);
 
 }  // namespace vkfuse
