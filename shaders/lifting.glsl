@@ -5,7 +5,8 @@
 //   x[q] += c0 x[R(q + o0, n)] + c1 x[R(q + o1, n)] for every q of one parity,
 // R = reflect101, which keeps parity, so a step never reads what it writes.
 // The scheme buffer (pc.scheme) holds
-//   [steps, Ke, Ko, then per step: parity, taps, c0, c1, o0, o1].
+//   [steps, Ke, Ko, 1/Ke high, 1/Ke low, 1/Ko high, 1/Ko low,
+//    then per step: parity, taps, c0, c1, o0, o1].
 
 // Where a line's coefficients live: buffer plus strides.
 struct LineView {
@@ -21,7 +22,7 @@ uint lift_slot(LineView v, uint plane, int line, int pos) {
 
 // sign = +1 applies step s, -1 undoes it.
 void lift_step(LineView v, uint plane, int line, int n, int s, float sign) {
-    uint base = 3u + uint(s) * 6u;
+    uint base = 7u + uint(s) * 6u;
     int parity = int(BUF(scheme).v[base]);
     int taps = int(BUF(scheme).v[base + 1u]);
     float c0 = BUF(scheme).v[base + 2u], c1 = BUF(scheme).v[base + 3u];
@@ -40,11 +41,21 @@ void lift_step(LineView v, uint plane, int line, int n, int s, float sign) {
 }
 
 // Multiplies (forward) or divides (inverse) even positions by Ke, odd by Ko.
+// The division is x (1/K)_high + x (1/K)_low as one sum rounded once
+// (compensated.glsl): a GPU's x / K may be 2.5 ulps off (SPIR-V allows it for
+// OpFDiv), and a rig re-fusing its output would drift by as much per level.
 void lift_scale(LineView v, uint plane, int line, int n, bool forward) {
-    float ke = BUF(scheme).v[1], ko = BUF(scheme).v[2];
     for (int p = 0; p < n; ++p) {
         uint at = lift_slot(v, plane, line, p);
-        float k = (p & 1) == 0 ? ke : ko;
-        BUF(LIFT_COEF).v[at] = TO_PLANE(forward ? BUF(LIFT_COEF).v[at] * k : BUF(LIFT_COEF).v[at] / k);
+        uint odd = uint(p & 1);
+        float x = BUF(LIFT_COEF).v[at];
+        if (forward) {
+            BUF(LIFT_COEF).v[at] = TO_PLANE(x * BUF(scheme).v[1u + odd]);
+        } else {
+            Dot2 d = dot2_of(0.0);
+            dot2_add(d, x, BUF(scheme).v[3u + 2u * odd]);
+            dot2_add(d, x, BUF(scheme).v[4u + 2u * odd]);
+            BUF(LIFT_COEF).v[at] = TO_PLANE(dot2_result(d));
+        }
     }
 }

@@ -87,7 +87,10 @@ TEST_F(VulkanPrecision, BackgroundMeanOf100FloatFramesWithinOneRounding) {
 //   bior2.2  periodization 0.37 / 2 -> 0.67 / 4                   symmetric 0.30 / 3 -> 0.36 / 4
 //   bior4.4  periodization 0.65 / 3 -> 1.11 / 6                   symmetric 1.17 / 10 -> 1.31 / 10
 // A single pass separates the two by 1.3x to 6x; the bounds keep 20 to 60 %
-// headroom over the compensated figures. Fed back into itself 20 times (a rig
+// headroom over the compensated figures. The symmetric inverse's scaling by
+// 1/Ke, 1/Ko is compensated too (lifting.glsl): as a plain division it held on
+// lavapipe, whose division is correctly rounded, but an NVIDIA H200's is not,
+// and there symmetric haar reached 0.97 / 5 and bior4.4 1.27 / 7. Fed back into itself 20 times (a rig
 // re-fusing its own output), the difference grows: see FeedbackDrift.
 struct FilterCase {
     Wavelet wavelet;

@@ -30,17 +30,25 @@ struct LineSpec {  // one 1-D pass: `lines` lines of n samples
     bool along_rows;  // true: lines are rows; false: columns
 };
 
-// The lifting scheme as lifting.glsl reads it: [steps, Ke, Ko, then per
-// step: parity, taps, c0, c1, o0, o1].
+// The lifting scheme as lifting.glsl reads it: [steps, Ke, Ko, 1/Ke as a
+// float pair (high, low), 1/Ko likewise, then per step: parity, taps, c0, c1,
+// o0, o1]. The inverse scales by the reciprocals in compensated arithmetic,
+// since a GPU's float division may be off by 2.5 ulps (SPIR-V's OpFDiv).
 std::vector<float> lifting_constants(Wavelet w) {
-    std::vector<float> c(3 + 24, 0.0f);
+    constexpr std::size_t kSteps = 7;  // where the steps begin
+    std::vector<float> c(kSteps + 24, 0.0f);
     const auto& ls = core::lifting_scheme(w);
     c[0] = float(ls.steps);
     c[1] = float(ls.scale_even);
     c[2] = float(ls.scale_odd);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const double inverse = 1.0 / double(c[1 + i]);  // of the float the forward pass multiplies by
+        c[3 + 2 * i] = float(inverse);
+        c[4 + 2 * i] = float(inverse - double(float(inverse)));
+    }
     for (int s = 0; s < ls.steps; ++s) {
         const auto& st = ls.step[std::size_t(s)];
-        float* o = &c[std::size_t(3 + 6 * s)];
+        float* o = &c[kSteps + 6 * std::size_t(s)];
         o[0] = float(st.parity);
         o[1] = float(st.taps);
         o[2] = float(st.coef[0]);
