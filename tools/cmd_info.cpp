@@ -32,6 +32,7 @@ void print_device(const DeviceInfo& d) {
     if (d.usable && d.fp16_storage) extras += "fp16 storage";
     if (d.usable && d.float64) extras += extras.empty() ? "float64" : ", float64";
     // What vkfuse/vk/interop.hpp's shared memory needs.
+    if (d.usable && d.float32_subnormals) extras += extras.empty() ? "float32 subnormals" : ", float32 subnormals";
     if (d.usable && d.external_memory_fd) extras += extras.empty() ? "memory fd" : ", memory fd";
     if (d.usable && d.external_memory_host) extras += extras.empty() ? "host memory" : ", host memory";
     if (d.usable && !d.device_addresses) extras += extras.empty() ? "no device addresses" : ", no device addresses";

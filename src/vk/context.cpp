@@ -8,6 +8,7 @@
 #include "vk/device_info.hpp"
 #include "vk/fma_probe.hpp"
 #include "vk/shader_registry.hpp"
+#include "vk/spirv_subnormals.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse {
@@ -102,6 +103,7 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
         if (!it->info.usable) throw Error(ErrorKind::Device, "caller device " + it->info.name + ": " + it->info.why_not);
         physical = caller.physical_device;
         info = it->info;
+        denorm_preserve = it->denorm_preserve;  // a property: nothing for the caller to enable
         // What the device has counts only where the caller enabled it.
         info.fp16_storage = info.fp16_storage && caller.fp16_storage;
         info.float64 = info.float64 && caller.shader_float64;
@@ -133,9 +135,10 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
         api->load_device(device);
         api->vkGetDeviceQueue(device, queue_family, caller.queue_index, &queue);
         if (!queue)
-            throw Error(ErrorKind::InvalidArgument, "caller device: the device has no queue " +
-                                                        std::to_string(caller.queue_index) + " in family " +
-                                                        std::to_string(queue_family));
+            throw Error(ErrorKind::InvalidArgument, "caller device: queue index " +
+                                                        std::to_string(caller.queue_index) + " of family " +
+                                                        std::to_string(queue_family) +
+                                                        " was not created with the device");
         create_layout();
         open_pipeline_cache(options.pipeline_cache);
     } catch (...) {
@@ -213,6 +216,7 @@ void Context::Impl::choose_device(int index) {
     physical = chosen->handle;
     info = chosen->info;
     memory_budget = chosen->memory_budget;
+    denorm_preserve = chosen->denorm_preserve;
     device_addresses = info.device_addresses;
     api->vkGetPhysicalDeviceProperties(physical, &properties);
     VkPhysicalDeviceMemoryProperties memory{};
@@ -230,6 +234,7 @@ void Context::Impl::apply_profile(const std::string& wanted) {
     }
     if (!profile->device_addresses) device_addresses = false;
     info.device_addresses = device_addresses;
+    if (profile->flushes_subnormals) info.float32_subnormals = false;
     adapted("device profile " + std::string(profile->name) + " (simulated on " + info.name + "): " +
             std::string(profile->summary));
 }
@@ -360,14 +365,19 @@ const vk::KernelInterface& Context::Impl::kernel_interface(const std::string& sh
 
 VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
                                           std::span<const std::uint32_t> specialization) {
-    auto spirv = vk::shader_spirv(shader);
-    const std::uint32_t invocations = vk::reflect_kernel(spirv).invocations;
+    const std::span<const std::uint32_t> embedded = vk::shader_spirv(shader);
+    const std::uint32_t invocations = vk::reflect_kernel(embedded).invocations;
     if (invocations > properties.limits.maxComputeWorkGroupInvocations)
         throw Error(ErrorKind::Device, info.name + ": kernel " + shader + " runs " + std::to_string(invocations) +
                                            " invocations per workgroup; the device allows " +
                                            std::to_string(properties.limits.maxComputeWorkGroupInvocations));
+    // Where the device can be asked to, every kernel keeps float32
+    // subnormals (vk/spirv_subnormals.hpp).
+    const std::vector<std::uint32_t> spirv = denorm_preserve
+                                                 ? vk::preserving_subnormals(embedded)
+                                                 : std::vector<std::uint32_t>(embedded.begin(), embedded.end());
     VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mci.codeSize = spirv.size_bytes();
+    mci.codeSize = spirv.size() * sizeof(std::uint32_t);
     mci.pCode = spirv.data();
     VkShaderModule module = VK_NULL_HANDLE;
     vk::check(api->vkCreateShaderModule(device, &mci, nullptr, &module), "vkCreateShaderModule");

@@ -41,6 +41,7 @@ struct Context::Impl {
     // lower; a kernel with more reaches them through device addresses.
     std::uint32_t bound_buffers = 0;
     bool memory_budget = false;  // VK_EXT_memory_budget offered, and enabled (never on a caller's device)
+    bool denorm_preserve = false;  // every kernel asks to keep float32 subnormals (vk/spirv_subnormals.hpp)
     std::uint32_t timestamp_bits = 0;  // the queue's timestampValidBits (0: no timestamp queries); wraps at 2^bits
     bool timestamps() const { return timestamp_bits > 0; }
     // false on a caller's device (vk/interop.hpp): the instance, device and

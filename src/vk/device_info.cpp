@@ -29,12 +29,14 @@ int type_rank(VkPhysicalDeviceType t) {
 
 PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceFloatControlsProperties float_controls{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     VkPhysicalDeviceProperties basic{};
     api.vkGetPhysicalDeviceProperties(dev, &basic);
     const bool is12 = basic.apiVersion >= VK_API_VERSION_1_2;
     if (is12) {
         props.pNext = &driver;
+        driver.pNext = &float_controls;
         api.vkGetPhysicalDeviceProperties2(dev, &props);
     }
     PhysicalDeviceEntry e;
@@ -58,6 +60,8 @@ PhysicalDeviceEntry describe(const Api& api, VkPhysicalDevice dev, int index) {
     e.info.device_addresses = f12.bufferDeviceAddress;
     e.info.fp16_storage = f11.storageBuffer16BitAccess;  // storage only: no module needs shaderFloat16
     e.info.float64 = f.features.shaderFloat64;
+    e.denorm_preserve = float_controls.shaderDenormPreserveFloat32;
+    e.info.float32_subnormals = e.denorm_preserve || basic.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     std::uint32_t n = 0;
     api.vkEnumerateDeviceExtensionProperties(dev, nullptr, &n, nullptr);
     std::vector<VkExtensionProperties> extensions(n);

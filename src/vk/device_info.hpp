@@ -13,6 +13,7 @@ struct PhysicalDeviceEntry {
     DeviceInfo info;
     int rank = 0;  // higher is preferred: discrete > integrated > virtual > cpu
     bool memory_budget = false;  // VK_EXT_memory_budget (Context::memory_heaps)
+    bool denorm_preserve = false;  // shaderDenormPreserveFloat32: kernels may ask to keep subnormals
 };
 
 std::string version_string(std::uint32_t version);

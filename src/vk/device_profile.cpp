@@ -11,7 +11,8 @@ namespace {
 // The figures, and where they come from:
 //
 // discrete-no-rebar: a desktop GPU (NVIDIA, AMD) on a host without resizable
-//   BAR. Its host-visible device-local memory is the PCI BAR window, a heap of
+//   BAR, whose kernels may flush float32 subnormals (NVIDIA's offer no
+//   shaderDenormPreserveFloat32). Its host-visible device-local memory is the PCI BAR window, a heap of
 //   256 MiB beside the GPU's own memory and system memory (the layout AMD's
 //   "Vulkan Memory Types on PC and how to use them", GPUOpen 2018, describes
 //   for every desktop vendor). Read-back is cached and not coherent, as on
@@ -27,6 +28,7 @@ namespace {
 //   guarantees 128 invocations per workgroup; vkfuse's kernels use 256, which
 //   current Mali and Adreno GPUs offer, so the profile has 256 and a device
 //   with fewer is refused naming the kernel (Context checks every kernel).
+//   Its kernels may flush float32 subnormals, as mobile GPUs' commonly do.
 //
 // no-device-address: a Vulkan 1.2 device without bufferDeviceAddress (an
 //   optional feature in 1.2; older Mali and Adreno drivers and some embedded
@@ -35,11 +37,11 @@ constexpr std::array kProfiles{
     DeviceProfile{"discrete-no-rebar",
                   "discrete GPU without resizable BAR: a 256 MiB host-visible device-local heap, non-coherent cached "
                   "read-back",
-                  0, 0, 0, 0, 0, true, true},
+                  0, 0, 0, 0, 0, true, true, true},
     DeviceProfile{"phone",
                   "phone-class GPU (VP_ANDROID_baseline_2021 limits): 4 storage buffers per stage, 128 MiB per "
                   "binding, 256-byte offsets, 16 KiB shared memory, 256 invocations",
-                  4, 128u << 20, 256, 16u << 10, 256, true, false},
+                  4, 128u << 20, 256, 16u << 10, 256, true, false, true},
     DeviceProfile{"no-device-address", "a Vulkan 1.2 device without bufferDeviceAddress", 0, 0, 0, 0, 0, false, false},
 };
 

@@ -26,6 +26,10 @@ struct DeviceProfile {
     // The heaps and memory types of a discrete GPU without resizable BAR
     // (vk/memory_types.hpp) instead of the device's own.
     bool discrete_memory = false;
+    // Treat the device as one whose kernels may flush float32 subnormals
+    // (DeviceInfo::float32_subnormals false), as GPUs without
+    // shaderDenormPreserveFloat32 do.
+    bool flushes_subnormals = false;
 };
 
 // Every profile, in the order `vkfuse info` lists them.

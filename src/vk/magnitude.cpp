@@ -14,8 +14,11 @@ namespace {
 constexpr double kBandLow = 0x1p-40, kBandHigh = 0x1p40;
 // Whatever scale is chosen, the largest scaled value stays below 2^64 (metric
 // sums of 2^34 such terms stay below 2^98) and the frames' largest >= 2^-64
-// (their significant bits stay far above float's 2^-126, where devices flush).
-constexpr double kKeepLow = 0x1p-64, kKeepHigh = 0x1p64;
+// (their significant bits stay far above float's 2^-126), or >= 2^-40, the
+// band's low edge, on a device that may flush subnormals: there the squares
+// the metrics sum (2^-80 and a deviation's 2^-40 below) must stay normal too.
+constexpr int kKeepLowExponent = -64, kKeepLowFlushingExponent = -40;
+constexpr double kKeepHigh = 0x1p64;
 // Brovey's 1e-6 threshold times 2^-e must stay a normal float with room for
 // the sums compared with it (1e-6 * 2^-100 = 7.9e-37 >= 2^-126 = 1.2e-38);
 // with e <= 100 the scaled frames stay below 2^28.
@@ -87,16 +90,19 @@ std::size_t first_non_finite(const void* values, std::size_t n) {
     return i;
 }
 
-std::optional<int> choose_exponent(std::uint32_t frames_max, std::uint32_t background_max, bool brovey) {
+std::optional<int> choose_exponent(std::uint32_t frames_max, std::uint32_t background_max, bool brovey,
+                                   bool keeps_subnormals) {
     const double f = from_bits(frames_max), m = std::max(f, double(from_bits(background_max)));
     if (m == 0) return 0;
+    const int keep_low = keeps_subnormals ? kKeepLowExponent : kKeepLowFlushingExponent;
     const auto fits = [&](int e) {
         const double ms = std::ldexp(m, -e), fs = std::ldexp(f, -e);
-        return ms < kKeepHigh && (f == 0 ? ms : fs) >= kKeepLow;
+        return ms < kKeepHigh && (f == 0 ? ms : fs) >= std::ldexp(1.0, keep_low);
     };
     if (m >= kBandLow && m < kBandHigh && fits(0)) return 0;
-    int e = exponent_of(m);                              // largest scaled magnitude in [0.5, 1)
-    if (!fits(e) && f > 0) e = exponent_of(f) + 63;     // frames far below the background: theirs in [2^-64, 2^-63)
+    int e = exponent_of(m);  // largest scaled magnitude in [0.5, 1)
+    // Frames far below the background: theirs in [2^keep_low, 2^(keep_low + 1)).
+    if (!fits(e) && f > 0) e = exponent_of(f) - keep_low - 1;
     if (brovey) e = std::min(e, kBroveyMaxExponent);
     if (!fits(e)) return std::nullopt;
     return e;

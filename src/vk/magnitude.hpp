@@ -48,9 +48,11 @@ float load(const void* values, std::size_t i);
 // largest magnitudes of its frames and of its background (bits, 0 if none;
 // exact or as copy_magnitude truncates them, unless that gave 0).
 // nullopt when no single scale holds both (frames more than ~2^127 below
-// the background). brovey caps e where its threshold would leave float's
-// normal range.
-std::optional<int> choose_exponent(std::uint32_t frames_max, std::uint32_t background_max, bool brovey);
+// the background, or ~2^103 on a device that may flush subnormals:
+// keeps_subnormals false, DeviceInfo::float32_subnormals). brovey caps e where
+// its threshold would leave float's normal range.
+std::optional<int> choose_exponent(std::uint32_t frames_max, std::uint32_t background_max, bool brovey,
+                                   bool keeps_subnormals);
 
 // Brovey's s >= 1e-6 in a sensor's scaled domain.
 float brovey_threshold(int exponent);

@@ -422,7 +422,7 @@ void upload_f32(Plan::Impl& im, std::span<const FrameView> frames) {
                                                         ": " + non_finite_at(c, vk::load(frames[s * K + k].data, i), i));
             }
         const std::uint32_t background = im.background_max.empty() ? 0 : im.background_max[s];
-        const std::optional<int> e = vk::choose_exponent(largest, background, im.brovey());
+        const std::optional<int> e = vk::choose_exponent(largest, background, im.brovey(), im.ctx.info.float32_subnormals);
         if (!e) {
             std::uint32_t exact = 0;
             for (std::size_t k = 0; k < K; ++k) exact = std::max(exact, vk::max_abs(frames[s * K + k].data, n));

@@ -23,6 +23,12 @@ struct DeviceInfo {
     std::string why_not;      // when !usable, the missing capability
     bool fp16_storage = false;  // 16-bit storage buffers (storageBuffer16BitAccess): Precision::Fp16Storage
     bool float64 = false;       // double arithmetic in shaders: FilterArithmetic::Float64
+    // Kernels keep float32 subnormals: a CPU device does, a GPU that offers
+    // shaderDenormPreserveFloat32 is asked to. Elsewhere a GPU may flush them
+    // to zero, and a plan keeps float32 frames that lie far below their
+    // background further from subnormals (a narrower range of the two it
+    // can fuse, beyond which it says so).
+    bool float32_subnormals = false;
     // bufferDeviceAddress: kernels may reach buffers by address (plans whose
     // one sensor exceeds a binding's range need it; without it every kernel binds).
     bool device_addresses = false;
