@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The check to run on a machine with a real GPU, on a tree built by the quick
 # start (bash tools/quickstart.sh test, or its build step): `vkfuse info`, the
-# `vulkan` label, and the default bench plus --sensors 1,64, all into one JSON
+# `vulkan` label, and the default bench plus the Vulkan cells at --sensors 1,64, all into one JSON
 # (README, "On a real GPU"). Under 8 minutes on a discrete GPU; each step has
 # its own time limit, and a step that fails or runs out is recorded as such.
 #   bash tools/gpu_check.sh [OUT.json] [BUILD_DIR]   (defaults: gpu_check.json, build)
@@ -34,17 +34,20 @@ step info 60 "$build/vkfuse" info
 info_rc=$step_rc
 info_json=$(json_text "$work/info.log")
 
-step vulkan_label 240 bash -c "cd '$build' && ctest -L vulkan -j\"\$(nproc)\" --timeout 120"
+step vulkan_label 240 bash -c "cd '$build' && ctest -L vulkan -j\"\$(nproc)\" --timeout 120 --output-on-failure"
 label_rc=$step_rc
 label_s=$step_s
 summary=$(grep -E 'tests passed, [0-9]+ tests? failed out of [0-9]+' "$work/vulkan_label.log" | tail -1)
 [ -n "$summary" ] || { label_rc=${label_rc/#0/1}; summary="no tests ran"; }  # a tree without the tests is no pass
-failed_tests=$(sed -n 's/^[[:space:]]*[0-9]* - \(.*\) (.*)$/\1/p' "$work/vulkan_label.log" | sed 's/.*/"&"/' | paste -sd, -)
+# ctest's list of failures: "<tab> 12 - Suite.Name (Failed)" with the test's labels after it.
+failed_tests=$(sed -n 's/^[[:space:]]*[0-9]* - \([^ ]*\) (.*$/\1/p' "$work/vulkan_label.log" | sed 's/.*/"&"/' | paste -sd, -)
+# A failing label keeps its whole log beside the JSON, with each failure's output.
+[ "$label_rc" -eq 0 ] || cp "$work/vulkan_label.log" "${out%.json}.vulkan_label.log"
 
 step bench_default 240 "$build/bench/vkfuse-bench" --json "$work/bench_default.json"
 default_rc=$step_rc
 default_s=$step_s
-step bench_sensors 120 "$build/bench/vkfuse-bench" --sensors 1,64 --json "$work/bench_sensors.json"
+step bench_sensors 120 "$build/bench/vkfuse-bench" --backend vulkan --sensors 1,64 --json "$work/bench_sensors.json"
 sensors_rc=$step_rc
 sensors_s=$step_s
 

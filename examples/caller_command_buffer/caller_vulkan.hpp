@@ -58,9 +58,23 @@ inline VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlag
     return VK_FALSE;
 }
 
+// Whether the loader knows an instance layer of this name: a GPU machine
+// often has no validation layers installed, and asking for one then fails
+// vkCreateInstance.
+inline bool layer_installed(const char* name) {
+    std::uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    for (const VkLayerProperties& l : layers)
+        if (std::strcmp(l.layerName, name) == 0) return true;
+    return false;
+}
+
 class Device {
 public:
-    // validation: VK_LAYER_KHRONOS_validation on, its messages counted.
+    // validation: VK_LAYER_KHRONOS_validation on where it is installed, its
+    // messages counted (validating() says whether it is on).
     explicit Device(bool validation) {
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
         app.pApplicationName = "caller";
@@ -74,6 +88,8 @@ public:
         dbg.pUserData = &messages_;
         VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
         ici.pApplicationInfo = &app;
+        validation = validation && layer_installed(layer);
+        validating_ = validation;
         if (validation) {
             ici.pNext = &dbg;
             ici.enabledLayerCount = 1;
@@ -135,6 +151,7 @@ public:
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
     std::uint64_t validation_messages() const { return messages_; }
+    bool validating() const { return validating_; }
 
     HostBuffer buffer(VkDeviceSize bytes) const {
         HostBuffer b;
@@ -213,6 +230,7 @@ private:
     std::uint32_t family_ = 0;
     bool float64_ = false, memory_fd_ = false, memory_host_ = false;
     std::uint64_t messages_ = 0;
+    bool validating_ = false;
 
     // Vulkan 1.2's bufferDeviceAddress and timelineSemaphore (vkfuse needs
     // both), doubles where the device has them, and the external-memory

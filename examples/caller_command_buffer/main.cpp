@@ -122,7 +122,10 @@ int main() {
                     reference_of(second, config.fusion)) && ok;
 
         const std::uint64_t messages = device.validation_messages();
-        std::printf("validation messages: %llu\n", static_cast<unsigned long long>(messages));
+        if (device.validating())
+            std::printf("validation messages: %llu\n", static_cast<unsigned long long>(messages));
+        else
+            std::printf("validation: not checked (VK_LAYER_KHRONOS_validation is not installed)\n");
         return ok && messages == 0 ? 0 : 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "caller_command_buffer: %s\n", e.what());
