@@ -62,11 +62,13 @@ int reflect101(int i, int n) {
     return i;
 }
 
-// Fusion rules (docs/spec.md "Rules"), applied to the K values of one coefficient.
-const uint RULE_MAX_ABS = 0u;
-const uint RULE_MEAN = 1u;
-const uint RULE_MAX = 2u;
-const uint RULE_MIN = 3u;
+// Fusion rules (docs/spec.md "Rules"), applied to the K values of one
+// coefficient; their codes are kernel_codes.h's.
+#include "kernel_codes.h"
+const uint RULE_MAX_ABS = VKFUSE_RULE_MAX_ABS;
+const uint RULE_MEAN = VKFUSE_RULE_MEAN;
+const uint RULE_MAX = VKFUSE_RULE_MAX;
+const uint RULE_MIN = VKFUSE_RULE_MIN;
 
 struct RuleState {
     float pick;  // max-abs / max / min: the value chosen so far

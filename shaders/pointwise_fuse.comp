@@ -19,7 +19,7 @@ layout(push_constant, std430) uniform Push {
     uint channels;
     uint is_u8;
     uint frames;
-    uint method;  // 0 brovey, 1 channel-sum, 2 mean (the ids of vk/method_recorders.cpp and kPointwiseMean)
+    uint method;  // VKFUSE_POINTWISE_* (kernel_codes.h)
     uint scaled_threshold;  // brovey: sensor s compares with thresholds.v[s]
     uint quads;   // pixels % 4 == 0
     uint write_planes;  // the metrics read them
@@ -49,7 +49,7 @@ struct Fuser {
 };
 
 void fuser_add(inout Fuser f, vec4 v) {
-    if (pc.method == 2u) {  // Kahan-compensated: a plain float sum of 100 frames drifts by ~1e-5
+    if (pc.method == VKFUSE_POINTWISE_MEAN) {  // Kahan-compensated: a plain float sum of 100 frames drifts by ~1e-5
         precise vec4 y = v - f.b;
         precise vec4 t = f.a + y;
         f.b = (t - f.a) - y;
@@ -63,23 +63,23 @@ void fuser_add(inout Fuser f, vec4 v) {
 void fuser_weigh(inout Fuser f, vec4 v) { f.b += (max(v, 0.0) / f.a) * v; }
 
 vec4 fuser_result(Fuser f, float threshold) {
-    if (pc.method == 2u) return f.a / float(pc.frames);
+    if (pc.method == VKFUSE_POINTWISE_MEAN) return f.a / float(pc.frames);
     return mix(f.mean_sum / float(pc.frames), f.b, greaterThanEqual(f.a, vec4(threshold)));
 }
 
 void main() {
     uint i = linear_index(256u), s = gl_WorkGroupID.z, C = pc.channels, K = pc.frames;
     if (i >= (pc.quads != 0u ? pc.pixels / 4u : pc.pixels)) return;
-    float threshold = pc.method == 0u ? brovey_threshold(s) : 0.0;
+    float threshold = pc.method == VKFUSE_POINTWISE_BROVEY ? brovey_threshold(s) : 0.0;
     if (pc.quads == 0u) {
         for (uint c = 0u; c < C; ++c) {
             float v;
-            if (pc.method == 1u) {  // channel c comes from frame c (lit by LED c alone)
+            if (pc.method == VKFUSE_POINTWISE_CHANNEL_SUM) {  // channel c comes from frame c (lit by LED c alone)
                 v = frame_sample(s * K + c, i, c);
             } else {
                 Fuser f = Fuser(vec4(0.0), vec4(0.0), vec4(0.0));
                 for (uint k = 0u; k < K; ++k) fuser_add(f, vec4(frame_sample(s * K + k, i, c), 0.0, 0.0, 0.0));
-                if (pc.method == 0u)
+                if (pc.method == VKFUSE_POINTWISE_BROVEY)
                     for (uint k = 0u; k < K; ++k) fuser_weigh(f, vec4(frame_sample(s * K + k, i, c), 0.0, 0.0, 0.0));
                 v = fuser_result(f, threshold).x;
             }
@@ -89,7 +89,7 @@ void main() {
         return;
     }
     Quad out_;
-    if (pc.method == 1u) {
+    if (pc.method == VKFUSE_POINTWISE_CHANNEL_SUM) {
         out_ = Quad(frame_quad(s * K, i).c0, frame_quad(s * K + 1u, i).c1, frame_quad(s * K + 2u, i).c2);
     } else {
         Fuser f0 = Fuser(vec4(0.0), vec4(0.0), vec4(0.0)), f1 = f0, f2 = f0;
@@ -99,7 +99,7 @@ void main() {
             fuser_add(f1, q.c1);
             fuser_add(f2, q.c2);
         }
-        if (pc.method == 0u)
+        if (pc.method == VKFUSE_POINTWISE_BROVEY)
             for (uint k = 0u; k < K; ++k) {
                 Quad q = frame_quad(s * K + k, i);
                 fuser_weigh(f0, q.c0);

@@ -363,6 +363,11 @@ const vk::KernelInterface& Context::Impl::kernel_interface(const std::string& sh
     return it->second;
 }
 
+void Context::Impl::use_kernel_interface(const std::string& shader, vk::KernelInterface k) {
+    std::lock_guard lock(pipelines_mutex_);
+    interfaces_.insert_or_assign(shader, std::move(k));
+}
+
 VkPipeline Context::Impl::create_pipeline(const std::string& shader, VkPipelineLayout with_layout,
                                           std::span<const std::uint32_t> specialization) {
     const std::span<const std::uint32_t> embedded = vk::shader_spirv(shader);

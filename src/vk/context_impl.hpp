@@ -74,6 +74,10 @@ struct Context::Impl {
     VkPipeline pipeline(const std::string& shader, std::span<const std::uint32_t> specialization = {});
     // The bindings and push-constant size an embedded shader declares (its SPIR-V).
     const vk::KernelInterface& kernel_interface(const std::string& shader);
+    // What kernel_interface(shader) answers from now on: the interface of a
+    // modified copy of the kernel's SPIR-V, for the test that shows a push
+    // block out of step with the C++ side is refused at plan build.
+    void use_kernel_interface(const std::string& shader, vk::KernelInterface k);
     // A new pipeline of an embedded shader with another layout, owned by the
     // caller (device probes that bind descriptor sets).
     VkPipeline create_pipeline(const std::string& shader, VkPipelineLayout with_layout,

@@ -53,9 +53,9 @@ bool needs_device_addresses(const PlanConfig& c, const VkPhysicalDeviceLimits& l
 
 PushConstants FrameSource::frame_fields() const {
     return PushConstants()
-        .u32(std::uint32_t(g_.cfg.width) * std::uint32_t(g_.cfg.height))
-        .u32(std::uint32_t(g_.cfg.channels))
-        .u32(g_.cfg.input == PixelType::U8);
+        .u32("pixels", std::uint32_t(g_.cfg.width) * std::uint32_t(g_.cfg.height))
+        .u32("channels", std::uint32_t(g_.cfg.channels))
+        .u32("is_u8", g_.cfg.input == PixelType::U8);
 }
 
 VkDeviceAddress FrameSource::planes() {
@@ -65,7 +65,7 @@ VkDeviceAddress FrameSource::planes() {
     const Grid grid = grid_1d(quads ? pixels / 4 : pixels, 256);
     planes_ = g_.planes(std::uint64_t(g_.planes_in()) * pixels);
     const DeviceSpan out = g_.span(planes_);
-    g_.rec.dispatch("unpack", {frames_, frames_, out, out}, frame_fields().u32(quads), grid.x, grid.y,
+    g_.rec.dispatch("unpack", {frames_, frames_, out, out}, frame_fields().u32("quads", quads), grid.x, grid.y,
                     std::uint32_t(g_.cfg.sensors * g_.cfg.frames));
     g_.rec.mark("unpack");
     return planes_;

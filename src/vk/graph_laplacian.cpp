@@ -15,7 +15,7 @@ struct Level {
     VkDeviceAddress fused;  // C_l, then R_l: S*C planes
 };
 
-std::uint32_t rule_id(Rule r) { return std::uint32_t(r); }
+
 
 constexpr std::uint32_t kPyrDownRows = 8;  // ROWS in pyr_down.comp
 
@@ -39,13 +39,14 @@ void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
         // from 320 columns, equal at 160, slower below).
         if (p.w % 8 == 0 && p.w >= 256) {
             const DeviceSpan src = g.span(p.gauss);
-            g.rec.dispatch("pyr_down4", {src, src, g.span(c.gauss)},
-                           PushConstants().i32(int(p.w)).i32(int(p.h)).i32(int(c.w)).i32(int(c.h)),
-                           groups(c.w / 4, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
+            g.rec.dispatch(
+                "pyr_down4", {src, src, g.span(c.gauss)},
+                PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
+                groups(c.w / 4, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
             continue;
         }
         g.rec.dispatch("pyr_down", {g.span(p.gauss), g.span(c.gauss)},
-                       PushConstants().i32(int(p.w)).i32(int(p.h)).i32(int(c.w)).i32(int(c.h)),
+                       PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
                        groups(c.w, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
     }
     g.rec.mark("pyr_down");
@@ -83,14 +84,14 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
             // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the same scalars.
             const Level& coarse = lv[l + 1];
             const PushConstants scalars = PushConstants()
-                                              .i32(int(c.w))
-                                              .i32(int(c.h))
-                                              .i32(int(coarse.w))
-                                              .i32(int(coarse.h))
-                                              .u32(std::uint32_t(g.cfg.frames))
-                                              .u32(std::uint32_t(g.cfg.channels))
-                                              .u32(rule_id(g.cfg.fusion.detail_rule))
-                                              .u32(table ? 1 : 0)
+                                              .i32("width", int(c.w))
+                                              .i32("height", int(c.h))
+                                              .i32("cw", int(coarse.w))
+                                              .i32("ch", int(coarse.h))
+                                              .u32("frames", std::uint32_t(g.cfg.frames))
+                                              .u32("channels", std::uint32_t(g.cfg.channels))
+                                              .u32("rule", rule_code(g.cfg.fusion.detail_rule))
+                                              .u32("use_table", table ? 1 : 0)
                                               .append(group.push(g.cfg));
             const DeviceSpan src = g.span(gauss), up = g.span(sources.levels[l + 1].addr), dst = g.span(c.fused);
             const DeviceSpan frames = table ? *table : src;
@@ -109,13 +110,18 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
         if (c.w % 8 == 0) {
             const DeviceSpan coarse = g.span(up.fused);
             g.rec.dispatch("lap_collapse4", {coarse, coarse, g.span(c.fused)},
-                           PushConstants().i32(int(c.w)).i32(int(c.h)).i32(int(up.w)).i32(int(up.h)),
+                           PushConstants()
+                               .i32("width", int(c.w))
+                               .i32("height", int(c.h))
+                               .i32("cw", int(up.w))
+                               .i32("ch", int(up.h)),
                            groups(up.w / 4, 16), groups(up.h, 16), g.planes_out());
             continue;
         }
-        g.rec.dispatch("lap_collapse", {g.span(up.fused), g.span(c.fused)},
-                       PushConstants().i32(int(c.w)).i32(int(c.h)).i32(int(up.w)).i32(int(up.h)),
-                       groups(up.w, 16), groups(up.h, 16), g.planes_out());
+        g.rec.dispatch(
+            "lap_collapse", {g.span(up.fused), g.span(c.fused)},
+            PushConstants().i32("width", int(c.w)).i32("height", int(c.h)).i32("cw", int(up.w)).i32("ch", int(up.h)),
+            groups(up.w, 16), groups(up.h, 16), g.planes_out());
     }
     g.rec.mark("lap_collapse");
     return lv[0].fused;

@@ -29,17 +29,17 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
     const DeviceSpan out = image ? *image : partials;
     g.rec.dispatch("metrics", {img, img, bg, bg, partials, out, out},
                    PushConstants()
-                       .i32(g.cfg.width)
-                       .i32(g.cfg.height)
-                       .u32(std::uint32_t(g.cfg.channels))
-                       .u32(wgs)
-                       .u32(background ? 1 : 0)
-                       .u32(g.cfg.metrics.has(Metric::Sharpness))
-                       .u32(g.cfg.metrics.has(Metric::Contrast))
-                       .u32(g.cfg.width % 4 == 0)
-                       .u32(std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height))
-                       .u32(image.has_value())
-                       .u32(background_group),
+                       .i32("width", g.cfg.width)
+                       .i32("height", g.cfg.height)
+                       .u32("channels", std::uint32_t(g.cfg.channels))
+                       .u32("groups", wgs)
+                       .u32("has_bg", background ? 1 : 0)
+                       .u32("want_sharpness", g.cfg.metrics.has(Metric::Sharpness))
+                       .u32("want_contrast", g.cfg.metrics.has(Metric::Contrast))
+                       .u32("quads", g.cfg.width % 4 == 0)
+                       .u32("pixels", std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height))
+                       .u32("write_image", image.has_value())
+                       .u32("bg_group", background_group),
                    grid.x, grid.y, std::uint32_t(g.cfg.sensors));
     g.rec.mark("metrics");
 }

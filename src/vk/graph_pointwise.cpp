@@ -11,20 +11,20 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
     const bool quads = pixels % 4 == 0;
     const Grid grid = grid_1d(quads ? pixels / 4 : pixels, 256);
     const DeviceSpan planes = g.span(out), img = image ? *image : planes;
-    g.rec.dispatch("pointwise_fuse",
-                   {frames, frames, planes, planes, img, img,
-                    g.brovey_thresholds ? g.span(g.brovey_thresholds) : planes},
-                   PushConstants()
-                       .u32(pixels)
-                       .u32(std::uint32_t(g.cfg.channels))
-                       .u32(g.cfg.input == PixelType::U8)
-                       .u32(std::uint32_t(g.cfg.frames))
-                       .u32(kernel)
-                       .u32(g.brovey_thresholds ? 1 : 0)
-                       .u32(quads)
-                       .u32(!g.cfg.metrics.empty())
-                       .u32(image.has_value()),
-                   grid.x, grid.y, std::uint32_t(g.cfg.sensors));
+    g.rec.dispatch(
+        "pointwise_fuse",
+        {frames, frames, planes, planes, img, img, g.brovey_thresholds ? g.span(g.brovey_thresholds) : planes},
+        PushConstants()
+            .u32("pixels", pixels)
+            .u32("channels", std::uint32_t(g.cfg.channels))
+            .u32("is_u8", g.cfg.input == PixelType::U8)
+            .u32("frames", std::uint32_t(g.cfg.frames))
+            .u32("method", kernel)
+            .u32("scaled_threshold", g.brovey_thresholds ? 1 : 0)
+            .u32("quads", quads)
+            .u32("write_planes", !g.cfg.metrics.empty())
+            .u32("write_image", image.has_value()),
+        grid.x, grid.y, std::uint32_t(g.cfg.sensors));
     g.rec.mark(stage);
     return out;
 }

@@ -282,10 +282,10 @@ private:
         const Region r = region(SparsePass::Compose, 0, 1);
         g_.rec.dispatch("sparse_compose", {g_.span(out), g_.sparse->backgrounds(), *r.records},
                         PushConstants()
-                            .u32(r.push)
-                            .u32(std::uint32_t(g_.cfg.channels))
-                            .i32(g_.cfg.width)
-                            .i32(g_.cfg.height),
+                            .u32("region", r.push)
+                            .u32("slot_planes", std::uint32_t(g_.cfg.channels))
+                            .i32("width", g_.cfg.width)
+                            .i32("height", g_.cfg.height),
                         groups(groups(std::uint32_t(g_.cfg.width), kComposeSpan), 16),
                         groups(std::uint32_t(g_.cfg.height), 16), g_.planes_out());
         g_.rec.mark("sparse_compose");
@@ -297,24 +297,25 @@ private:
         const int s_line = ls.along_rows ? src.row_stride : 1, s_elem = ls.along_rows ? 1 : src.row_stride;
         const int d_line = ls.along_rows ? dst.row_stride : 1, d_elem = ls.along_rows ? 1 : dst.row_stride;
         return PushConstants()
-            .i32(ls.n)
-            .i32(ls.half_len)
-            .i32(ls.high_len)
-            .i32(ls.lines)
-            .i32(s_line)
-            .i32(s_elem)
-            .u32(src.plane_stride)
-            .i32(d_line)
-            .i32(d_elem)
-            .u32(dst.plane_stride)
-            .u32(ls.along_rows ? 0 : 1);
+            .i32("n", ls.n)
+            .i32("half_len", ls.half_len)
+            .i32("high_len", ls.high_len)
+            .i32("lines", ls.lines)
+            .i32("src_line_stride", s_line)
+            .i32("src_elem_stride", s_elem)
+            .u32("src_plane_stride", src.plane_stride)
+            .i32("dst_line_stride", d_line)
+            .i32("dst_elem_stride", d_elem)
+            .u32("dst_plane_stride", dst.plane_stride)
+            .u32("x_is_line", ls.along_rows ? 0 : 1);
     }
 
     // Lifting: an invocation per line. Convolution: per line, an invocation
     // per kConvBlock of the half_len coefficient positions.
     void dispatch_line(const char* conv, const char* lift, const PlaneView& src, const PlaneView& dst, const LineSpec& ls,
                        std::uint32_t planes, const Region& r) {
-        const auto push = line_push(src, dst, ls).u32(r.push).u32(planes / std::uint32_t(g_.cfg.sensors));
+        const auto push =
+            line_push(src, dst, ls).u32("region", r.push).u32("slot_planes", planes / std::uint32_t(g_.cfg.sensors));
         const DeviceSpan in = g_.span(src.addr), out = g_.span(dst.addr), scheme = scheme_ ? g_.span(scheme_) : in;
         const DeviceSpan records = r.or_else(in);
         const std::uint32_t blocks = groups(std::uint32_t(ls.half_len), kConvBlock);
@@ -336,15 +337,16 @@ private:
     }
     void forward_from_frames(const FrameSource& input, const PlaneView& dst, const LineSpec& ls) {
         const Region r = region(SparsePass::ForwardRows, 0, 8);
-        g_.rec.dispatch("dwt_rows_frames", {input.frames(), input.frames(), g_.span(dst.addr), r.or_else(input.frames())},
+        g_.rec.dispatch("dwt_rows_frames",
+                        {input.frames(), input.frames(), g_.span(dst.addr), r.or_else(input.frames())},
                         input.frame_fields()
-                            .i32(ls.n)
-                            .i32(ls.half_len)
-                            .i32(ls.lines)
-                            .i32(dst.row_stride)
-                            .u32(dst.plane_stride)
-                            .u32(r.push)
-                            .u32(std::uint32_t(g_.cfg.frames)),
+                            .i32("n", ls.n)
+                            .i32("half_len", ls.half_len)
+                            .i32("lines", ls.lines)
+                            .i32("dst_row_stride", dst.row_stride)
+                            .u32("dst_plane_stride", dst.plane_stride)
+                            .u32("region", r.push)
+                            .u32("slot_planes", std::uint32_t(g_.cfg.frames)),
                         groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16),
                         std::uint32_t(g_.cfg.sensors * g_.cfg.frames), taps_);
     }
@@ -360,15 +362,15 @@ private:
             const DeviceSpan in = g_.span(src.addr);
             g_.rec.dispatch("dwt_rows4", {in, in, g_.span(dst.addr), r.or_else(in)},
                             PushConstants()
-                                .i32(ls.n)
-                                .i32(ls.half_len)
-                                .i32(ls.lines)
-                                .i32(src.row_stride)
-                                .u32(src.plane_stride)
-                                .i32(dst.row_stride)
-                                .u32(dst.plane_stride)
-                                .u32(r.push)
-                                .u32(planes / std::uint32_t(g_.cfg.sensors)),
+                                .i32("n", ls.n)
+                                .i32("half_len", ls.half_len)
+                                .i32("lines", ls.lines)
+                                .i32("src_row_stride", src.row_stride)
+                                .u32("src_plane_stride", src.plane_stride)
+                                .i32("dst_row_stride", dst.row_stride)
+                                .u32("dst_plane_stride", dst.plane_stride)
+                                .u32("region", r.push)
+                                .u32("slot_planes", planes / std::uint32_t(g_.cfg.sensors)),
                             groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16), planes,
                             taps_);
             return;
@@ -387,20 +389,20 @@ private:
         const DeviceSpan src = g_.span(rows.addr);
         g_.rec.dispatch("dwt_fuse_columns", {src, g_.span(coeffs.addr), g_.span(out.addr), r.or_else(src)},
                         PushConstants()
-                            .i32(s.h)
-                            .i32(s.ch)
-                            .i32(s.bw)
-                            .i32(s.bw)
-                            .u32(rows.plane_stride)
-                            .u32(coeffs.plane_stride)
-                            .i32(s.cw)
-                            .u32(std::uint32_t(g_.cfg.frames))
-                            .u32(std::uint32_t(g_.cfg.channels))
-                            .u32(std::uint32_t(spec_.base_rule))
-                            .u32(std::uint32_t(spec_.detail_rule))
-                            .u32(deepest ? 1 : 0)
-                            .u32(r.push)
-                            .u32(std::uint32_t(g_.cfg.channels)),
+                            .i32("n", s.h)
+                            .i32("half_len", s.ch)
+                            .i32("columns", s.bw)
+                            .i32("row_stride", s.bw)
+                            .u32("src_plane_stride", rows.plane_stride)
+                            .u32("block_plane_stride", coeffs.plane_stride)
+                            .i32("approx_w", s.cw)
+                            .u32("frames", std::uint32_t(g_.cfg.frames))
+                            .u32("channels", std::uint32_t(g_.cfg.channels))
+                            .u32("base_rule", rule_code(spec_.base_rule))
+                            .u32("detail_rule", rule_code(spec_.detail_rule))
+                            .u32("deepest", deepest ? 1 : 0)
+                            .u32("region", r.push)
+                            .u32("slot_planes", std::uint32_t(g_.cfg.channels)),
                         groups(std::uint32_t(s.bw), 16), groups(groups(std::uint32_t(s.ch), kConvBlock), 16),
                         g_.planes_out(), taps_);
     }

@@ -17,6 +17,7 @@ constexpr std::uint32_t OpExecutionMode = 16, ExecutionModeLocalSize = 17, OpCap
 constexpr std::uint32_t OpStore = 62, OpCopyMemory = 63, OpAccessChain = 65, OpInBoundsAccessChain = 66,
                         OpPtrAccessChain = 67, OpAtomicStore = 228, OpAtomicFirst = 229, OpAtomicLast = 242,
                         OpAtomicFAddEXT = 6035;
+constexpr std::uint32_t OpMemberName = 6;
 constexpr std::uint32_t OpTypeInt = 21, OpTypeFloat = 22, OpTypeVector = 23, OpTypeStruct = 30, OpTypePointer = 32,
                         OpVariable = 59, OpDecorate = 71, OpMemberDecorate = 72;
 constexpr std::uint32_t DecorationSpecId = 1, DecorationBinding = 33, DecorationOffset = 35;
@@ -24,11 +25,36 @@ constexpr std::uint32_t StoragePushConstant = 9, StoragePhysicalBuffer = 5349;
 
 [[noreturn]] void bad(const std::string& why) { throw Error(ErrorKind::Device, "internal: kernel SPIR-V: " + why); }
 
+// A literal string's bytes, nul-terminated, four to a word from the lowest-order byte.
+std::string literal_string(const std::uint32_t* words, std::size_t count) {
+    std::string s;
+    for (std::size_t i = 0; i < count * 4; ++i) {
+        const char c = char(words[i / 4] >> (8 * (i % 4)) & 0xffu);
+        if (c == '\0') break;
+        s += c;
+    }
+    return s;
+}
+
 }  // namespace
+
+std::string_view to_string(PushType t) {
+    switch (t) {
+        case PushType::U32: return "uint";
+        case PushType::I32: return "int";
+        case PushType::F32: return "float";
+        case PushType::Address: return "buffer address";
+        case PushType::Other: break;
+    }
+    return "another type";
+}
 
 KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
     if (spirv.size() < 5 || spirv[0] != kMagic) bad("no SPIR-V header");
     std::map<std::uint32_t, std::uint32_t> type_bytes;         // every sized type seen
+    std::map<std::uint32_t, PushType> scalar_types;            // the types a push member may have
+    std::map<std::uint32_t, std::map<std::uint32_t, std::string>> member_names;  // struct -> member -> name
+    std::array<std::uint32_t, 3> local_size{};
     std::map<std::uint32_t, std::vector<std::uint32_t>> members;  // struct id -> member types
     std::map<std::uint32_t, std::map<std::uint32_t, std::uint32_t>> offsets;  // struct -> member -> offset
     std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> pointers;  // id -> (storage class, pointee)
@@ -53,17 +79,32 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
                 if (count >= 2 && w[1] == CapabilityFloat16) float16_arithmetic = true;
                 break;
             case OpExecutionMode:
-                if (count >= 6 && w[2] == ExecutionModeLocalSize) invocations = w[3] * w[4] * w[5];
+                if (count >= 6 && w[2] == ExecutionModeLocalSize) {
+                    invocations = w[3] * w[4] * w[5];
+                    local_size = {w[3], w[4], w[5]};
+                }
+                break;
+            case OpMemberName:
+                if (count >= 4) member_names[w[1]][w[2]] = literal_string(w + 3, count - 3);
                 break;
             case OpTypeInt:
-            case OpTypeFloat: type_bytes[w[1]] = w[2] / 8; break;
+                type_bytes[w[1]] = w[2] / 8;
+                if (count >= 4 && w[2] == 32) scalar_types[w[1]] = w[3] ? PushType::I32 : PushType::U32;
+                break;
+            case OpTypeFloat:
+                type_bytes[w[1]] = w[2] / 8;
+                if (w[2] == 32) scalar_types[w[1]] = PushType::F32;
+                break;
             case OpTypeVector:
                 if (type_bytes.count(w[2])) type_bytes[w[1]] = type_bytes[w[2]] * w[3];
                 break;
             case OpTypeStruct: members[w[1]].assign(w + 2, w + count); break;
             case OpTypePointer:
                 pointers[w[1]] = {w[2], w[3]};
-                if (w[2] == StoragePhysicalBuffer) type_bytes[w[1]] = 8;
+                if (w[2] == StoragePhysicalBuffer) {
+                    type_bytes[w[1]] = 8;
+                    scalar_types[w[1]] = PushType::Address;
+                }
                 break;
             case OpVariable:
                 if (w[3] == StoragePushConstant) push_pointer = w[1];
@@ -81,6 +122,7 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
     }
     KernelInterface k;
     k.invocations = invocations;
+    k.local_size = local_size;
     k.splits_products = splits_products;
     k.float16_arithmetic = float16_arithmetic;
     for (std::uint32_t pointer : stored) {
@@ -101,6 +143,9 @@ KernelInterface reflect_kernel(std::span<const std::uint32_t> spirv) {
             const auto offset = offsets[block].find(m);
             if (size == type_bytes.end() || offset == offsets[block].end()) bad("push constant member of unknown size");
             k.push_bytes = std::max(k.push_bytes, offset->second + size->second);
+            const auto type = scalar_types.find(types[m]);
+            k.push.push_back({member_names[block][m], type == scalar_types.end() ? PushType::Other : type->second,
+                              offset->second});
         }
     }
     return k;

@@ -4,8 +4,12 @@
 // Push block) and what the C++ side passes can never drift apart unnoticed:
 // every test that records the kernel fails first.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace vkfuse::vk {
 
@@ -13,10 +17,23 @@ namespace vkfuse::vk {
 // for every pipeline.
 inline constexpr std::uint32_t kSplitProductsConstant = 100;
 
+// The scalar types a push-constant member may have.
+enum class PushType : std::uint8_t { U32, I32, F32, Address, Other };
+std::string_view to_string(PushType);  // "uint", "int", "float", "buffer address", "another type"
+
+// One member of a kernel's push-constant block, as its SPIR-V declares it.
+struct PushMember {
+    std::string name;  // the GLSL member name ("" where the module carries no names)
+    PushType type = PushType::Other;
+    std::uint32_t offset = 0;  // bytes from the block's start
+};
+
 struct KernelInterface {
     std::uint32_t bindings = 0;    // storage buffers of set 0 (bindings 0 .. n-1)
     std::uint32_t push_bytes = 0;  // end of the push-constant block's last member
     std::uint32_t invocations = 0;  // per workgroup: its local size x * y * z
+    std::array<std::uint32_t, 3> local_size{};  // the workgroup's x, y, z
+    std::vector<PushMember> push;  // the push-constant block's members, in order
     bool splits_products = false;   // declares SPLIT_PRODUCTS: a compensated float32 kernel
     bool float16_arithmetic = false;  // declares the Float16 capability (shaderFloat16)
     // Bit b set: binding b is written (a store or an atomic reaches it); the

@@ -1,6 +1,7 @@
 // The fusion methods' Vulkan rows (vk/method_recorders.hpp).
 #include "vk/method_recorders.hpp"
 
+#include "vk/kernel_codes.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
@@ -16,9 +17,10 @@ VkDeviceAddress wavelet(GraphBuilder& g, FrameSource& input, std::optional<Devic
     return record_wavelet(g, input);
 }
 
-constexpr MethodRecorder kChannelSum{Method::ChannelSum, GraphShape::Pointwise, pointwise, 1, 0, 0, 1.0 / 3, 0};
+constexpr MethodRecorder kChannelSum{Method::ChannelSum, GraphShape::Pointwise, pointwise,
+                                     VKFUSE_POINTWISE_CHANNEL_SUM, 0, 0, 1.0 / 3, 0};
 // Brovey: clamp, sum, weight and weighted sum per frame sample.
-constexpr MethodRecorder kBrovey{Method::Brovey, GraphShape::Pointwise, pointwise, 0, 0, 0, 1, 4};
+constexpr MethodRecorder kBrovey{Method::Brovey, GraphShape::Pointwise, pointwise, VKFUSE_POINTWISE_BROVEY, 0, 0, 1, 4};
 constexpr MethodRecorder kLaplacian{Method::Laplacian, GraphShape::Multiscale, laplacian, 0, 0.4, 0.4, 1, 0};
 constexpr MethodRecorder kWavelet{Method::Wavelet, GraphShape::Multiscale, wavelet, 0, 2.4, 2.4, 1, 0};
 

@@ -254,8 +254,11 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
         if (cfg.want_fused && !vk::metrics_write_image(cfg)) {
             const vk::DeviceSpan fused = g.span(fused_planes);
             rec.dispatch("pack", {fused, fused, image, image},
-                         vk::PushConstants().u32(pixels).u32(std::uint32_t(cfg.channels)).u32(quads), grid.x, grid.y,
-                         count);
+                         vk::PushConstants()
+                             .u32("pixels", pixels)
+                             .u32("channels", std::uint32_t(cfg.channels))
+                             .u32("quads", quads),
+                         grid.x, grid.y, count);
             rec.mark("pack");
         }
     }

@@ -10,6 +10,7 @@
 #include "vk/buffer.hpp"
 #include "vk/command_slot.hpp"
 #include "vk/plan_skip.hpp"
+#include "vk/kernel_codes.hpp"
 #include "vk/recorder.hpp"
 #include "vkfuse/vk/plan.hpp"
 
@@ -94,7 +95,7 @@ private:
 // fused image into `image` themselves (when given): no unpack, no pack.
 // `kernel` is the method id shaders/pointwise_fuse.comp switches on (a
 // method's is in its Vulkan row), `stage` the name --profile reports.
-inline constexpr std::uint32_t kPointwiseMean = 2;  // the background model's mean
+inline constexpr std::uint32_t kPointwiseMean = VKFUSE_POINTWISE_MEAN;  // the background model's mean
 VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image,
                                  std::uint32_t kernel, const char* stage);
 VkDeviceAddress record_laplacian(GraphBuilder& g, FrameSource& input);

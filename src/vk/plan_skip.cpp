@@ -61,12 +61,12 @@ void SkipState::record_detection(Recorder& rec, VkCommandBuffer cmd, const Devic
     const DeviceSpan static_scores = statics() ? statics_.span() : scores_.span();
     rec.dispatch("change_detect", {frames, means_.span(), inv_noise_.span(), scores_.span(), previous, static_scores},
                  PushConstants()
-                     .u32(std::uint32_t(cfg_.width))
-                     .u32(std::uint32_t(cfg_.height))
-                     .u32(std::uint32_t(cfg_.channels))
-                     .u32(std::uint32_t(cfg_.frames))
-                     .u32(cfg_.width % 4 == 0)
-                     .u32(statics()),
+                     .u32("width", std::uint32_t(cfg_.width))
+                     .u32("height", std::uint32_t(cfg_.height))
+                     .u32("channels", std::uint32_t(cfg_.channels))
+                     .u32("frames", std::uint32_t(cfg_.frames))
+                     .u32("aligned", cfg_.width % 4 == 0)
+                     .u32("previous", statics()),
                  tiles_x_, tiles_y_, std::uint32_t(cfg_.sensors));
 }
 

@@ -7,10 +7,21 @@
 
 namespace vkfuse::vk {
 
-PushConstants& PushConstants::put(const void* v, std::size_t n) {
-    if (size_ + n > bytes_.size()) throw Error(ErrorKind::Device, "internal: push constants exceed 128 bytes");
+PushConstants& PushConstants::put(std::string_view name, PushType type, const void* v, std::size_t n) {
+    if (size_ + n > bytes_.size() || count_ == fields_.size())
+        throw Error(ErrorKind::Device, "internal: push constants exceed 128 bytes");
+    fields_[count_++] = {name, type, std::uint32_t(size_)};
     std::memcpy(bytes_.data() + size_, v, n);
     size_ += n;
+    return *this;
+}
+
+PushConstants& PushConstants::append(const PushConstants& more) {
+    for (const Field& f : more.fields()) {
+        const std::size_t n = f.type == PushType::Address ? 8 : 4;
+        if (f.type == PushType::Address) size_ = (size_ + 7) & ~std::size_t(7);
+        put(f.name, f.type, static_cast<const std::uint8_t*>(more.data()) + f.offset, n);
+    }
     return *this;
 }
 
@@ -53,12 +64,30 @@ void Recorder::barrier(VkPipelineStageFlags src, VkAccessFlags src_access, VkPip
 namespace {
 
 // The dispatch against what the kernel's SPIR-V declares (kernel_interface.hpp).
-void check_interface(Context::Impl& ctx, const std::string& kernel, std::size_t bindings, std::uint32_t push_bytes) {
+void check_interface(Context::Impl& ctx, const std::string& kernel, std::size_t bindings, const PushConstants& push) {
     const KernelInterface& k = ctx.kernel_interface(kernel);
-    if (k.bindings != bindings || k.push_bytes != push_bytes)
-        throw Error(ErrorKind::Device, "internal: " + kernel + " declares " + std::to_string(k.bindings) + " buffers and " +
-                                           std::to_string(k.push_bytes) + " push-constant bytes; the recorder gave " +
-                                           std::to_string(bindings) + " and " + std::to_string(push_bytes));
+    if (k.bindings != bindings || k.push_bytes != push.size())
+        throw Error(ErrorKind::Device, "internal: " + kernel + " declares " + std::to_string(k.bindings) +
+                                           " buffers and " + std::to_string(k.push_bytes) +
+                                           " push-constant bytes; the recorder gave " + std::to_string(bindings) +
+                                           " and " + std::to_string(push.size()));
+    // Field by field: a kernel's block reordered, renamed or retyped, or a
+    // C++ field passed out of place, is named here at plan build.
+    const auto fields = push.fields();
+    for (std::size_t i = 0; i < k.push.size() && i < fields.size(); ++i) {
+        const PushMember& want = k.push[i];
+        const PushConstants::Field& got = fields[i];
+        const bool unnamed_buffer = got.name.empty() && got.type == PushType::Address;
+        if ((!unnamed_buffer && got.name != want.name) || got.type != want.type || got.offset != want.offset)
+            throw Error(ErrorKind::Device, "internal: " + kernel + "'s push constant " + std::to_string(i) + " is " +
+                                               std::string(to_string(want.type)) + " " + want.name + " at byte " +
+                                               std::to_string(want.offset) + "; the recorder gave " +
+                                               std::string(to_string(got.type)) + " " + std::string(got.name) +
+                                               " at byte " + std::to_string(got.offset));
+    }
+    if (fields.size() != k.push.size())
+        throw Error(ErrorKind::Device, "internal: " + kernel + " declares " + std::to_string(k.push.size()) +
+                                           " push constants; the recorder gave " + std::to_string(fields.size()));
 }
 
 }  // namespace
@@ -114,13 +143,13 @@ void Recorder::prepare_dispatch(const std::string& shader, std::initializer_list
     auto& api = *ctx_.api;
     PushConstants push;
     if (addressed) {
-        for (const DeviceSpan& b : buffers) push.ptr(b.address());
+        for (const DeviceSpan& b : buffers) push.ptr({}, b.address());
     } else {
         const VkDescriptorSet set = sets_.bind(std::span(buffers.begin(), buffers.size()));
         api.vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, ctx_.layout, 0, 1, &set, 0, nullptr);
     }
     push.append(scalars);
-    check_interface(ctx_, kernel, addressed ? 0 : buffers.size(), push.size());
+    check_interface(ctx_, kernel, addressed ? 0 : buffers.size(), push);
     if (push.size() > 0)
         api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
 }

@@ -89,11 +89,11 @@ void SkipState::record_on_device(Recorder& rec, VkCommandBuffer cmd, const Devic
     record_detection(rec, cmd, frames);
     rec.dispatch("skip_decide", {scores_.span(), host_args_.span(), decision_.span(), indirect_.span()},
                  PushConstants()
-                     .u32(S)
-                     .u32(tiles_x_ * tiles_y_)
-                     .u32(kFusionDispatches)
-                     .u32(background_slots.buffer != VK_NULL_HANDLE)
-                     .f32(threshold_below(cfg_.skip.threshold)),
+                     .u32("sensors", S)
+                     .u32("tiles", tiles_x_ * tiles_y_)
+                     .u32("gather_args", kFusionDispatches)
+                     .u32("backgrounds", background_slots.buffer != VK_NULL_HANDLE)
+                     .f32("threshold", threshold_below(cfg_.skip.threshold)),
                  1, 1, 1);
     rec.barrier_for_indirect();
     // The scores and the slots, for the outcomes the host reports.
@@ -107,18 +107,20 @@ void SkipState::record_on_device(Recorder& rec, VkCommandBuffer cmd, const Devic
         return VkDeviceSize(kFusionDispatches + std::uint32_t(mode)) * sizeof(VkDispatchIndirectCommand);
     };
     const auto frame_words = std::uint32_t(sensor_frame_bytes(cfg_) / 4);
-    rec.dispatch_indirect("skip_gather", {frames, scratch_.span(), decision_.span()},
-                          PushConstants().u32(S).u32(frame_words).u32(std::uint32_t(Gather::FramesOut)),
-                          indirect_.handle(), gather_at(Gather::FramesOut));
-    rec.dispatch_indirect("skip_gather", {scratch_.span(), frames, decision_.span()},
-                          PushConstants().u32(S).u32(frame_words).u32(std::uint32_t(Gather::FramesIn)),
-                          indirect_.handle(), gather_at(Gather::FramesIn));
+    rec.dispatch_indirect(
+        "skip_gather", {frames, scratch_.span(), decision_.span()},
+        PushConstants().u32("sensors", S).u32("words", frame_words).u32("mode", std::uint32_t(Gather::FramesOut)),
+        indirect_.handle(), gather_at(Gather::FramesOut));
+    rec.dispatch_indirect(
+        "skip_gather", {scratch_.span(), frames, decision_.span()},
+        PushConstants().u32("sensors", S).u32("words", frame_words).u32("mode", std::uint32_t(Gather::FramesIn)),
+        indirect_.handle(), gather_at(Gather::FramesIn));
     if (background_slots.buffer)
         rec.dispatch_indirect("skip_gather", {backgrounds_.span(), background_slots, decision_.span()},
                               PushConstants()
-                                  .u32(S)
-                                  .u32(frame_words * 4 / std::uint32_t(cfg_.frames))
-                                  .u32(std::uint32_t(Gather::Backgrounds)),
+                                  .u32("sensors", S)
+                                  .u32("words", frame_words * 4 / std::uint32_t(cfg_.frames))
+                                  .u32("mode", std::uint32_t(Gather::Backgrounds)),
                               indirect_.handle(), gather_at(Gather::Backgrounds));
     rec.mark("compact");
 }
