@@ -31,7 +31,7 @@ layout(push_constant, std430) uniform Push {
     uint previous; // also compare with the previous fused frames
 } pc;
 
-const uint TILE = 32u;
+const uint TILE = uint(VKFUSE_SKIP_TILE);
 
 uint frame_byte(uint i) { return (BUF(frame_words).v[i >> 2u] >> ((i & 3u) * 8u)) & 255u; }
 uint mean_u16(uint i) { return (BUF(mean_words).v[i >> 1u] >> ((i & 1u) * 16u)) & 65535u; }

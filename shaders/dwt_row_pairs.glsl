@@ -5,7 +5,7 @@
 // each half as two plane4. Each output is the same rounded-once dot product
 // as dwt_forward's (compensated.glsl). Needs the push fields half_len,
 // dst_row_stride and dst_plane_stride, and a plane4_t buffer dst4.
-const int PAIRS = 8;
+const int PAIRS = VKFUSE_ROW_PAIRS;
 const int SPAN = 2 * PAIRS + MAX_TAPS - 2;  // longest window
 // The window starts at sample 2 o0 + 1 - F/2: SHIFT past a quad boundary.
 const int SHIFT = ((1 - F / 2) % 4 + 4) % 4;

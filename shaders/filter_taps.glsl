@@ -64,7 +64,7 @@ float rec_hi(int j) { return VKFUSE_TAP(RH, j); }
 // Outputs per invocation along the line: each keeps a window of the samples
 // its outputs share in registers, so a sample is loaded about once per
 // invocation that needs it instead of once per filter tap.
-const int BLOCK = 4;
+const int BLOCK = VKFUSE_CONV_BLOCK;
 
 // a mod m for a in [-m, 2m), then clamped into [0, m): the clamp only touches
 // windows of invocations whose outputs fall past the end (never stored), and

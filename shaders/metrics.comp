@@ -41,7 +41,7 @@ layout(push_constant, std430) uniform Push {
 #include "frames.glsl"
 
 const uint WG = 256u;
-const int ROWS = 16;
+const int ROWS = VKFUSE_METRIC_ROWS;
 
 uint plane_size() { return uint(pc.width * pc.height); }
 

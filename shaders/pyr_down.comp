@@ -18,7 +18,7 @@ const float K5[5] = float[5](1.0, 4.0, 6.0, 4.0, 1.0);
 // Output rows per invocation: consecutive outputs share three of their five
 // source rows, so the invocation keeps the rows' horizontal sums and loads two
 // new source rows per output instead of five.
-const int ROWS = 8;
+const int ROWS = VKFUSE_PYR_DOWN_ROWS;
 
 float row_sum(uint sbase, int r, int cols[5]) {
     uint row = sbase + uint(reflect101(r, pc.sh) * pc.sw);

@@ -16,7 +16,7 @@ layout(push_constant, std430) uniform Push {
     int dh;
 } pc;
 
-const int ROWS = 8;  // output rows per invocation, as pyr_down.comp
+const int ROWS = VKFUSE_PYR_DOWN_ROWS;  // output rows per invocation, as pyr_down.comp
 
 float tap(float a, float b, float c, float d, float e) {
     return (((1.0 * a + 4.0 * b) + 6.0 * c) + 4.0 * d) + 1.0 * e;

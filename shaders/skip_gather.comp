@@ -23,7 +23,7 @@ layout(push_constant, std430) uniform Push {
 } pc;
 #include "skip_decision.glsl"
 
-const uint WORDS_PER_INVOCATION = 16u;
+const uint WORDS_PER_INVOCATION = uint(VKFUSE_GATHER_WORDS);
 
 void main() {
     uint first = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 256u * WORDS_PER_INVOCATION +

@@ -11,7 +11,7 @@
 #define BUFFERS(X) X(0, plane_t, fused) X(1, float, background) X(2, uint, regions)
 #include "bindings.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;
-const int SPAN = 32;
+const int SPAN = VKFUSE_COMPOSE_SPAN;
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
     uint region;

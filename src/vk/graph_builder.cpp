@@ -62,11 +62,10 @@ VkDeviceAddress FrameSource::planes() {
     if (planes_) return planes_;
     const std::uint32_t pixels = std::uint32_t(g_.cfg.width) * std::uint32_t(g_.cfg.height);
     const bool quads = pixels % 4 == 0;  // four pixels per invocation
-    const Grid grid = grid_1d(quads ? pixels / 4 : pixels, 256);
     planes_ = g_.planes(std::uint64_t(g_.planes_in()) * pixels);
     const DeviceSpan out = g_.span(planes_);
-    g_.rec.dispatch("unpack", {frames_, frames_, out, out}, frame_fields().u32("quads", quads), grid.x, grid.y,
-                    std::uint32_t(g_.cfg.sensors * g_.cfg.frames));
+    g_.rec.dispatch("unpack", {frames_, frames_, out, out}, frame_fields().u32("quads", quads),
+                    Recorder::LinearWork{quads ? pixels / 4 : pixels, std::uint32_t(g_.cfg.sensors * g_.cfg.frames)});
     g_.rec.mark("unpack");
     return planes_;
 }

@@ -17,7 +17,7 @@ struct Level {
 
 
 
-constexpr std::uint32_t kPyrDownRows = 8;  // ROWS in pyr_down.comp
+constexpr std::uint32_t kPyrDownRows = VKFUSE_PYR_DOWN_ROWS;
 
 // The pyramid's level sizes; lv[0].gauss is the caller's.
 std::vector<Level> level_sizes(const PlanConfig& cfg) {
@@ -42,12 +42,12 @@ void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
             g.rec.dispatch(
                 "pyr_down4", {src, src, g.span(c.gauss)},
                 PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
-                groups(c.w / 4, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
+                Recorder::Work{c.w / 4, groups(c.h, kPyrDownRows), g.planes_in()});
             continue;
         }
         g.rec.dispatch("pyr_down", {g.span(p.gauss), g.span(c.gauss)},
                        PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
-                       groups(c.w, 16), groups(groups(c.h, kPyrDownRows), 16), g.planes_in());
+                       Recorder::Work{c.w, groups(c.h, kPyrDownRows), g.planes_in()});
     }
     g.rec.mark("pyr_down");
 }
@@ -96,11 +96,11 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
             const DeviceSpan src = g.span(gauss), up = g.span(sources.levels[l + 1].addr), dst = g.span(c.fused);
             const DeviceSpan frames = table ? *table : src;
             if (c.w % 8 == 0)  // 2 x 8 outputs per invocation, plane4 loads and stores
-                g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars, groups(coarse.w / 4, 16),
-                               groups(coarse.h, 16), group.planes(g.cfg));
+                g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars,
+                               Recorder::Work{coarse.w / 4, coarse.h, group.planes(g.cfg)});
             else  // 2 x 2 outputs per invocation
-                g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars, groups(coarse.w, 16), groups(coarse.h, 16),
-                               group.planes(g.cfg));
+                g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars,
+                               Recorder::Work{coarse.w, coarse.h, group.planes(g.cfg)});
         }
     }
     g.rec.mark("lap_fuse");
@@ -115,13 +115,13 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
                                .i32("height", int(c.h))
                                .i32("cw", int(up.w))
                                .i32("ch", int(up.h)),
-                           groups(up.w / 4, 16), groups(up.h, 16), g.planes_out());
+                           Recorder::Work{up.w / 4, up.h, g.planes_out()});
             continue;
         }
         g.rec.dispatch(
             "lap_collapse", {g.span(up.fused), g.span(c.fused)},
             PushConstants().i32("width", int(c.w)).i32("height", int(c.h)).i32("cw", int(up.w)).i32("ch", int(up.h)),
-            groups(up.w, 16), groups(up.h, 16), g.planes_out());
+            Recorder::Work{up.w, up.h, g.planes_out()});
     }
     g.rec.mark("lap_collapse");
     return lv[0].fused;

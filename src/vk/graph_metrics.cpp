@@ -10,21 +10,27 @@
 
 namespace vkfuse::vk {
 namespace {
-// metrics.comp: kGroupSize invocations per group, each a strip kRows tall and 4 pixels wide.
-constexpr std::uint32_t kGroupSize = 256, kRows = 16;
+// metrics.comp: kGroupSize invocations per group (checked against its SPIR-V
+// where it is dispatched: the read-back of one partial per group is sized by
+// it), each a strip kRows tall and 4 pixels wide.
+constexpr std::uint32_t kGroupSize = 256, kRows = VKFUSE_METRIC_ROWS;
+
+std::uint64_t metric_items(const PlanConfig& cfg) {
+    return groups(std::uint64_t(cfg.width), 4) * groups(std::uint64_t(cfg.height), kRows);
+}
+
 }  // namespace
 
-std::uint32_t metric_groups(const PlanConfig& cfg) {
-    const std::uint64_t items = groups(std::uint64_t(cfg.width), 4) * groups(std::uint64_t(cfg.height), kRows);
-    return groups(items, kGroupSize);
-}
+std::uint32_t metric_groups(const PlanConfig& cfg) { return groups(metric_items(cfg), kGroupSize); }
 
 bool metrics_write_image(const PlanConfig& cfg) { return !cfg.metrics.empty() && cfg.width % 4 == 0; }
 
 void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
                     std::optional<DeviceSpan> image, std::uint32_t background_group) {
     const std::uint32_t wgs = metric_groups(g.cfg);
-    const Grid grid = grid_1d(wgs, 1);
+    if (g.rec.local_size("metrics")[0] != kGroupSize)
+        throw Error(ErrorKind::Device, "internal: metrics.comp's local size is not the " + std::to_string(kGroupSize) +
+                                           " its partials are sized by");
     const DeviceSpan img = g.span(fused), bg = background ? g.span(background) : img;
     const DeviceSpan out = image ? *image : partials;
     g.rec.dispatch("metrics", {img, img, bg, bg, partials, out, out},
@@ -40,7 +46,7 @@ void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress back
                        .u32("pixels", std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height))
                        .u32("write_image", image.has_value())
                        .u32("bg_group", background_group),
-                   grid.x, grid.y, std::uint32_t(g.cfg.sensors));
+                   Recorder::LinearWork{metric_items(g.cfg), std::uint32_t(g.cfg.sensors)});
     g.rec.mark("metrics");
 }
 

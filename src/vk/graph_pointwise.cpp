@@ -9,7 +9,6 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
     const std::uint32_t pixels = std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height);
     const VkDeviceAddress out = g.planes(std::uint64_t(g.planes_out()) * pixels);
     const bool quads = pixels % 4 == 0;
-    const Grid grid = grid_1d(quads ? pixels / 4 : pixels, 256);
     const DeviceSpan planes = g.span(out), img = image ? *image : planes;
     g.rec.dispatch(
         "pointwise_fuse",
@@ -24,7 +23,7 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
             .u32("quads", quads)
             .u32("write_planes", !g.cfg.metrics.empty())
             .u32("write_image", image.has_value()),
-        grid.x, grid.y, std::uint32_t(g.cfg.sensors));
+        Recorder::LinearWork{quads ? pixels / 4 : pixels, std::uint32_t(g.cfg.sensors)});
     g.rec.mark(stage);
     return out;
 }

@@ -122,10 +122,12 @@ std::vector<std::uint32_t> filter_specialization(Wavelet w) {
 }
 
 // Outputs (forward: coefficient pairs; inverse: coefficient indices o) per
-// invocation of dwt_forward / dwt_inverse: BLOCK in filter_taps.glsl.
-constexpr int kConvBlock = 4;
-// Pixels of a row per invocation of sparse_compose (SPAN there).
-constexpr std::uint32_t kComposeSpan = 32;
+// invocation of dwt_forward / dwt_inverse.
+constexpr int kConvBlock = VKFUSE_CONV_BLOCK;
+// Pixels of a row per invocation of sparse_compose.
+constexpr std::uint32_t kComposeSpan = VKFUSE_COMPOSE_SPAN;
+// Coefficient pairs per invocation of the row passes of whole quads.
+constexpr int kRowPairs = VKFUSE_ROW_PAIRS;
 
 std::vector<LevelShape> level_shapes(const PlanConfig& cfg) {
     const bool periodization = cfg.fusion.mode == WaveletMode::Periodization;
@@ -286,8 +288,8 @@ private:
                             .u32("slot_planes", std::uint32_t(g_.cfg.channels))
                             .i32("width", g_.cfg.width)
                             .i32("height", g_.cfg.height),
-                        groups(groups(std::uint32_t(g_.cfg.width), kComposeSpan), 16),
-                        groups(std::uint32_t(g_.cfg.height), 16), g_.planes_out());
+                        Recorder::Work{groups(std::uint32_t(g_.cfg.width), kComposeSpan), std::uint32_t(g_.cfg.height),
+                                       g_.planes_out()});
         g_.rec.mark("sparse_compose");
     }
 
@@ -320,23 +322,23 @@ private:
         const DeviceSpan records = r.or_else(in);
         const std::uint32_t blocks = groups(std::uint32_t(ls.half_len), kConvBlock);
         if (!periodization_) {
-            g_.rec.dispatch(lift, {in, out, scheme, records}, push, groups(std::uint32_t(ls.lines), 64), 1, planes);
+            g_.rec.dispatch(lift, {in, out, scheme, records}, push, Recorder::Work{std::uint32_t(ls.lines), 1, planes});
         } else if (ls.along_rows) {
-            g_.rec.dispatch(conv, {in, out, scheme, records}, push, groups(blocks, 16),
-                            groups(std::uint32_t(ls.lines), 16), planes, taps_);
+            g_.rec.dispatch(conv, {in, out, scheme, records}, push, Recorder::Work{blocks, std::uint32_t(ls.lines), planes},
+                            taps_);
         } else {
-            g_.rec.dispatch(conv, {in, out, scheme, records}, push, groups(std::uint32_t(ls.lines), 16),
-                            groups(blocks, 16), planes, taps_);
+            g_.rec.dispatch(conv, {in, out, scheme, records}, push, Recorder::Work{std::uint32_t(ls.lines), blocks, planes},
+                            taps_);
         }
     }
 
     // The first row pass reads the frames as uploaded where its rows are whole
     // quads of pixels and its pairs come eight at a time.
     bool rows_from_frames(const LineSpec& ls) const {
-        return periodization_ && ls.half_len % 8 == 0 && ls.n % 4 == 0;
+        return periodization_ && ls.half_len % kRowPairs == 0 && ls.n % 4 == 0;
     }
     void forward_from_frames(const FrameSource& input, const PlaneView& dst, const LineSpec& ls) {
-        const Region r = region(SparsePass::ForwardRows, 0, 8);
+        const Region r = region(SparsePass::ForwardRows, 0, kRowPairs);
         g_.rec.dispatch("dwt_rows_frames",
                         {input.frames(), input.frames(), g_.span(dst.addr), r.or_else(input.frames())},
                         input.frame_fields()
@@ -347,16 +349,17 @@ private:
                             .u32("dst_plane_stride", dst.plane_stride)
                             .u32("region", r.push)
                             .u32("slot_planes", std::uint32_t(g_.cfg.frames)),
-                        groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16),
-                        std::uint32_t(g_.cfg.sensors * g_.cfg.frames), taps_);
+                        Recorder::Work{std::uint32_t(ls.half_len / kRowPairs), std::uint32_t(ls.lines),
+                                       std::uint32_t(g_.cfg.sensors * g_.cfg.frames)},
+                        taps_);
     }
 
     // A row pass at `level` (region-aware), or a column pass (level -1).
     void forward(const PlaneView& src, const PlaneView& dst, const LineSpec& ls, std::uint32_t planes, int level) {
         // Rows of whole quads: eight pairs per invocation, plane4 loads and stores.
-        const bool rows4 = periodization_ && ls.along_rows && ls.half_len % 8 == 0 && src.row_stride % 4 == 0 &&
+        const bool rows4 = periodization_ && ls.along_rows && ls.half_len % kRowPairs == 0 && src.row_stride % 4 == 0 &&
                            src.plane_stride % 4 == 0 && dst.row_stride % 4 == 0 && dst.plane_stride % 4 == 0;
-        const Region r = level >= 0 && periodization_ ? region(SparsePass::ForwardRows, level, rows4 ? 8 : kConvBlock)
+        const Region r = level >= 0 && periodization_ ? region(SparsePass::ForwardRows, level, rows4 ? kRowPairs : kConvBlock)
                                                       : Region{};
         if (rows4) {
             const DeviceSpan in = g_.span(src.addr);
@@ -371,8 +374,7 @@ private:
                                 .u32("dst_plane_stride", dst.plane_stride)
                                 .u32("region", r.push)
                                 .u32("slot_planes", planes / std::uint32_t(g_.cfg.sensors)),
-                            groups(std::uint32_t(ls.half_len / 8), 16), groups(std::uint32_t(ls.lines), 16), planes,
-                            taps_);
+                            Recorder::Work{std::uint32_t(ls.half_len / kRowPairs), std::uint32_t(ls.lines), planes}, taps_);
             return;
         }
         dispatch_line("dwt_forward", "lift_forward", src, dst, ls, planes, r);
@@ -403,8 +405,8 @@ private:
                             .u32("deepest", deepest ? 1 : 0)
                             .u32("region", r.push)
                             .u32("slot_planes", std::uint32_t(g_.cfg.channels)),
-                        groups(std::uint32_t(s.bw), 16), groups(groups(std::uint32_t(s.ch), kConvBlock), 16),
-                        g_.planes_out(), taps_);
+                        Recorder::Work{std::uint32_t(s.bw), groups(std::uint32_t(s.ch), kConvBlock), g_.planes_out()},
+                        taps_);
     }
 
     void fuse(const PlaneView& coeffs, const PlaneView& out, const LevelShape& s, bool deepest) {

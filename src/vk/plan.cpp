@@ -232,7 +232,6 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
     if (skip) g.sparse = skip->sparse();
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
-    const vk::Grid grid = vk::grid_1d(quads ? pixels / 4 : pixels, 256);
     const std::optional<vk::DeviceSpan> wanted_image = cfg.want_fused ? std::optional(image) : std::nullopt;
     VkDeviceAddress fused_planes = 0;
     bool pointwise = false;  // the fusion kernel wrote the image itself
@@ -258,7 +257,7 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
                              .u32("pixels", pixels)
                              .u32("channels", std::uint32_t(cfg.channels))
                              .u32("quads", quads),
-                         grid.x, grid.y, count);
+                         vk::Recorder::LinearWork{quads ? pixels / 4 : pixels, count});
             rec.mark("pack");
         }
     }

@@ -59,7 +59,7 @@ void SkipState::record_detection(Recorder& rec, VkCommandBuffer cmd, const Devic
     // the frames and the scores stand in for their bindings.
     const DeviceSpan previous = statics() ? previous_.span() : frames;
     const DeviceSpan static_scores = statics() ? statics_.span() : scores_.span();
-    rec.dispatch("change_detect", {frames, means_.span(), inv_noise_.span(), scores_.span(), previous, static_scores},
+    rec.dispatch_groups("change_detect", {frames, means_.span(), inv_noise_.span(), scores_.span(), previous, static_scores},
                  PushConstants()
                      .u32("width", std::uint32_t(cfg_.width))
                      .u32("height", std::uint32_t(cfg_.height))

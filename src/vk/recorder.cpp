@@ -154,9 +154,31 @@ void Recorder::prepare_dispatch(const std::string& shader, std::initializer_list
         api.vkCmdPushConstants(cmd_, ctx_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push.size(), push.data());
 }
 
+std::array<std::uint32_t, 3> Recorder::local_size(const std::string& shader) {
+    return ctx_.kernel_interface(kernel_name(shader, false)).local_size;
+}
+
 void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
-                        const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
-                        std::span<const std::uint32_t> specialization) {
+                        const PushConstants& scalars, Work work, std::span<const std::uint32_t> specialization) {
+    const auto local = local_size(shader);
+    dispatch_groups(shader, buffers, scalars, groups(work.x, local[0]), groups(work.y, local[1]), work.z,
+                    specialization);
+}
+
+void Recorder::dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                        const PushConstants& scalars, LinearWork work, std::span<const std::uint32_t> specialization) {
+    const auto local = local_size(shader);
+    if (local[1] != 1 || local[2] != 1)
+        throw Error(ErrorKind::Device, "internal: " + shader + " is not a 1-D kernel (local size " +
+                                           std::to_string(local[0]) + " x " + std::to_string(local[1]) + ")");
+    if (work.n == 0) return;
+    const Grid grid = grid_1d(work.n, local[0]);
+    dispatch_groups(shader, buffers, scalars, grid.x, grid.y, work.z, specialization);
+}
+
+void Recorder::dispatch_groups(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                               const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
+                               std::span<const std::uint32_t> specialization) {
     if (gx == 0 || gy == 0 || gz == 0) return;
     prepare_dispatch(shader, buffers, scalars, specialization);
     auto& api = *ctx_.api;

@@ -32,13 +32,36 @@ public:
              DescriptorSets& sets, bool addressed, bool secondary = false,
              std::uint32_t timestamps = kMaxTimestamps);
 
-    // Records shader over groups (x, y, z) with `buffers` in the order of its
-    // BUFFERS list (shaders/bindings.glsl) and `scalars`, the rest of its
+    // What a dispatch covers: x by y invocations, which the kernel's local
+    // size (read from its SPIR-V, never restated here) turns into groups, in
+    // z layers of groups (planes or sensors).
+    struct Work {
+        std::uint64_t x = 1, y = 1;
+        std::uint32_t z = 1;
+    };
+    // n invocations of a 1-D kernel (local size (x, 1, 1)), laid out as an
+    // (x, y) grid of groups (grid_1d), in z layers.
+    struct LinearWork {
+        std::uint64_t n = 1;
+        std::uint32_t z = 1;
+    };
+
+    // Records shader over `work` with `buffers` in the order of its BUFFERS
+    // list (shaders/bindings.glsl) and `scalars`, the rest of its
     // push-constant block. Everything the previous dispatches wrote to its buffers is visible
-    // to it. specialization: the values of its constant_id 0, 1, ...
+    // to it. specialization: the values of its constant_id 0, 1, ... Nothing
+    // is recorded for empty work.
     void dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers, const PushConstants& scalars,
-                  std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
-                  std::span<const std::uint32_t> specialization = {});
+                  Work work, std::span<const std::uint32_t> specialization = {});
+    void dispatch(const std::string& shader, std::initializer_list<DeviceSpan> buffers, const PushConstants& scalars,
+                  LinearWork work, std::span<const std::uint32_t> specialization = {});
+    // Exactly gx x gy x gz groups, for kernels whose workgroup is the unit of
+    // work (a tile's score, one partial sum, a single decision).
+    void dispatch_groups(const std::string& shader, std::initializer_list<DeviceSpan> buffers,
+                         const PushConstants& scalars, std::uint32_t gx, std::uint32_t gy, std::uint32_t gz,
+                         std::span<const std::uint32_t> specialization = {});
+    // The kernel's local size (x, y, z), as its SPIR-V declares it.
+    std::array<std::uint32_t, 3> local_size(const std::string& shader);
 
     // The same with its groups read from `args` at `offset` (a
     // VkDispatchIndirectCommand a kernel wrote: see barrier_for_indirect).

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <string>
 
+#include "vk/kernel_codes.hpp"
 #include "vk/plan_skip.hpp"
 #include "vkfuse/core/error.hpp"
 
@@ -25,7 +26,7 @@ struct DecisionLayout {
 
 // skip_gather.comp's modes, in the order of their indirect commands.
 enum class Gather : std::uint32_t { FramesOut, FramesIn, Backgrounds };
-constexpr std::uint32_t kGatherGroupWords = 256 * 16;  // skip_gather.comp's words per workgroup
+constexpr std::uint32_t kGatherInvocationWords = VKFUSE_GATHER_WORDS;
 
 // The largest float not above t: a float score v is <= t exactly when it is
 // <= this, so the device's float comparison decides as the host's in double.
@@ -63,7 +64,8 @@ void SkipState::make_device_buffers() {
     if (cfg_.metrics.has(Metric::BackgroundDiff)) backgrounds_ = Buffer(ctx_, S * samples * 4, MemoryUse::Upload);
     background_version_.assign(S, 0);
     // Each gather's groups for one slot; the decision multiplies z.
-    const Grid frames = grid_1d(bytes / 4, kGatherGroupWords), planes = grid_1d(samples, kGatherGroupWords);
+    const std::uint32_t group_words = ctx_.kernel_interface("skip_gather").local_size[0] * kGatherInvocationWords;
+    const Grid frames = grid_1d(bytes / 4, group_words), planes = grid_1d(samples, group_words);
     for (const auto& [mode, grid] : {std::pair{Gather::FramesOut, frames}, std::pair{Gather::FramesIn, frames},
                                     std::pair{Gather::Backgrounds, planes}}) {
         std::uint32_t* g = host + DecisionLayout::gather(std::size_t(mode));
@@ -87,7 +89,7 @@ void SkipState::record_on_device(Recorder& rec, VkCommandBuffer cmd, const Devic
     const Api& api = *ctx_.api;
     const auto S = std::uint32_t(cfg_.sensors);
     record_detection(rec, cmd, frames);
-    rec.dispatch("skip_decide", {scores_.span(), host_args_.span(), decision_.span(), indirect_.span()},
+    rec.dispatch_groups("skip_decide", {scores_.span(), host_args_.span(), decision_.span(), indirect_.span()},
                  PushConstants()
                      .u32("sensors", S)
                      .u32("tiles", tiles_x_ * tiles_y_)
