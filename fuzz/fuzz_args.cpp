@@ -8,11 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "backend.hpp"
 #include "commands.hpp"
-#include "fusion_options.hpp"
 #include "fuzz_targets.hpp"
-#include "run_options.hpp"
+#include "run/run_options.hpp"
+#include "shared_options.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
 

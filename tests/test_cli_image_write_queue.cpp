@@ -1,9 +1,9 @@
-// ImageWriteQueue (tools/image_write_queue.hpp): `vkfuse run` writes its fused
+// ImageWriteQueue (tools/run/image_write_queue.hpp): `vkfuse run` writes its fused
 // PNGs on a thread of their own; every image lands, in order, and a failed
 // write fails the run instead of vanishing on the other thread.
 #include <gtest/gtest.h>
 
-#include "image_write_queue.hpp"
+#include "run/image_write_queue.hpp"
 #include "temp_dir.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"

@@ -1,4 +1,4 @@
-// RunStats (tools/run_stats.hpp), what `vkfuse run` reports in summary.json
+// RunStats (tools/run/run_stats.hpp), what `vkfuse run` reports in summary.json
 // and its progress line, from synthetic cycles: frame timestamps on each
 // sensor's clock and stage times chosen here, so every rate the summary
 // derives from them is known exactly. Wall-clock rates are checked against
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "run_stats.hpp"
+#include "run/run_stats.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::test {

@@ -8,7 +8,7 @@
 
 #include "cli_runner.hpp"
 #include "json_member.hpp"
-#include "run_config.hpp"
+#include "run/run_config.hpp"
 #include "vkfuse/core/io.hpp"
 #include "study_dataset.hpp"
 

@@ -1,4 +1,4 @@
-// The emulated DIGIT's USB/IP link (tools/digit_emulator/usbip_device.hpp)
+// The emulated DIGIT's USB/IP link (tests/hil/digit_emulator/usbip_device.hpp)
 // against a scripted host: this test plays vhci_hcd on the other end of a
 // socket pair and checks the replies word by word, above all the cancellation
 // rules vhci depends on: a transfer it gave back must never be answered

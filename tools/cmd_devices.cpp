@@ -3,7 +3,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "json.hpp"
+#include "standard_output.hpp"
 #include "vkfuse/sensor/digit.hpp"
 #include "vkfuse/sensor/digit_sensor.hpp"
 

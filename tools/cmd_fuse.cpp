@@ -2,10 +2,9 @@
 #include <new>
 #include <span>
 
-#include "backend.hpp"
+#include "shared_options.hpp"
 #include "commands.hpp"
 #include "core/check_finite.hpp"
-#include "fusion_options.hpp"
 #include "inputs.hpp"
 #include "io/interrupt_cleanup.hpp"
 #include "memory_check.hpp"

@@ -5,11 +5,10 @@
 #include <new>
 #include <optional>
 
-#include "backend.hpp"
+#include "shared_options.hpp"
 #include "commands.hpp"
 #include "standard_output.hpp"
 #include "inputs.hpp"
-#include "json.hpp"
 #include "memory_check.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"

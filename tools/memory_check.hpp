@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "backend.hpp"
+#include "shared_options.hpp"
 #include "io/image_header.hpp"
 #include "vkfuse/core/fusion.hpp"
 

@@ -1,12 +1,23 @@
 #include "standard_output.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
+#include "io/json_value.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {
+
+std::string json_string(std::string_view text) { return json::quote(text); }
+
+std::string json_number(double value) {
+    if (!std::isfinite(value)) return "null";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return text;
+}
 
 int checked_stdout(int status) {
     // errno still tells why an earlier write failed, unless something since

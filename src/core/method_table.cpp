@@ -2,7 +2,9 @@
 #include "core/method_table.hpp"
 
 #include "core/fusion_methods.hpp"
+#include "core/validate_shape.hpp"
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::core {
 namespace {
@@ -61,3 +63,15 @@ std::string method_names(std::string_view last_separator) {
 }
 
 }  // namespace vkfuse::core
+
+namespace vkfuse {
+
+// fuse_reference(): validation, then the method's row (include/vkfuse/core/reference.hpp).
+ImageD fuse_reference(std::span<const ImageD> frames, const FusionSpec& spec) {
+    if (frames.empty()) validate(spec, 1, 1, 1, 0);  // throws the frame-count message
+    validate(spec, frames[0].height, frames[0].width, frames[0].channels, int(frames.size()));
+    core::check_frames(frames);
+    return core::method_info(spec.method).reference(frames, spec);
+}
+
+}  // namespace vkfuse

@@ -8,18 +8,17 @@
 #include <filesystem>
 #include <iostream>
 
-#include "backend.hpp"
+#include "shared_options.hpp"
 #include "commands.hpp"
 #include "io/atomic_write.hpp"
 #include "io/path_component.hpp"
 #include "progress.hpp"
-#include "run_config.hpp"
-#include "run_sensors.hpp"
+#include "run/run_config.hpp"
+#include "run/run_sensors.hpp"
 #include "sim_record.hpp"
 #include "staged_directory.hpp"
 #include "standard_output.hpp"
 #include "stop_signal.hpp"
-#include "study_options.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/study/study.hpp"
 

@@ -1,8 +1,8 @@
 // `vkfuse run --source ros2`: a capture host's sensors as this rig's
 // (vkfuse/ros2/remote.hpp); a vkfuse built without vkfuse::ros2 refuses the
 // option while parsing (run_options.cpp).
-#include "json.hpp"
-#include "run_sensors.hpp"
+#include "standard_output.hpp"
+#include "run/run_sensors.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {

@@ -1,4 +1,4 @@
-#include "study_plots.hpp"
+#include "study/study_plots.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "run_stats.hpp"
+#include "run/run_stats.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "json.hpp"
+#include "standard_output.hpp"
 
 namespace vkfuse::cli {
 namespace {

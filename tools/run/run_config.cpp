@@ -1,4 +1,4 @@
-#include "run_config.hpp"
+#include "run/run_config.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "run_options.hpp"
+#include "run/run_options.hpp"
 #include "vkfuse/rig/rig.hpp"
 #include "vkfuse/ros2/remote.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"

@@ -1,4 +1,4 @@
-#include "run_publish.hpp"
+#include "run/run_publish.hpp"
 
 #include <chrono>
 #include <cstdio>

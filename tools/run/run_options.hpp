@@ -4,7 +4,7 @@
 #include <string>
 
 #include "args.hpp"
-#include "backend.hpp"
+#include "shared_options.hpp"
 #include "vkfuse/core/fusion.hpp"
 #include "vkfuse/core/metrics.hpp"
 #include "vkfuse/core/skip.hpp"

@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "run_options.hpp"
+#include "run/run_options.hpp"
 #include "vkfuse/rig/rig.hpp"
 
 namespace vkfuse::cli {

@@ -1,4 +1,4 @@
-#include "paced_sensor.hpp"
+#include "run/paced_sensor.hpp"
 
 namespace vkfuse::cli {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "image_write_queue.hpp"
+#include "run/image_write_queue.hpp"
 #include "vkfuse/rig/rig.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 

@@ -4,16 +4,15 @@
 #include <filesystem>
 #include <memory>
 
-#include "backend.hpp"
+#include "shared_options.hpp"
 #include "commands.hpp"
-#include "fusion_options.hpp"
 #include "memory_check.hpp"
 #include "progress.hpp"
-#include "run_options.hpp"
-#include "run_output.hpp"
-#include "run_publish.hpp"
-#include "run_sensors.hpp"
-#include "run_stats.hpp"
+#include "run/run_options.hpp"
+#include "run/run_output.hpp"
+#include "run/run_publish.hpp"
+#include "run/run_sensors.hpp"
+#include "run/run_stats.hpp"
 #include "staged_directory.hpp"
 #include "standard_output.hpp"
 #include "stop_signal.hpp"

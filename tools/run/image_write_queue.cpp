@@ -1,4 +1,4 @@
-#include "image_write_queue.hpp"
+#include "run/image_write_queue.hpp"
 
 #include "vkfuse/core/io.hpp"
 

@@ -1,4 +1,4 @@
-#include "run_output.hpp"
+#include "run/run_output.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "io/path_component.hpp"
-#include "json.hpp"
+#include "standard_output.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
 

@@ -1,12 +1,12 @@
-#include "run_options.hpp"
+#include "run/run_options.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 
-#include "fusion_options.hpp"
-#include "run_config.hpp"
+#include "shared_options.hpp"
+#include "run/run_config.hpp"
 #include "sim_record.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"

@@ -1,9 +1,9 @@
-#include "run_sensors.hpp"
+#include "run/run_sensors.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "paced_sensor.hpp"
+#include "run/paced_sensor.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {

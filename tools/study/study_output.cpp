@@ -1,4 +1,4 @@
-#include "study_output.hpp"
+#include "study/study_output.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "io/atomic_write.hpp"
 #include "io/json_value.hpp"
-#include "study_plots.hpp"
+#include "study/study_plots.hpp"
 
 namespace vkfuse::cli {
 namespace {

@@ -4,14 +4,13 @@
 #include <cstdio>
 #include <string>
 
-#include "backend.hpp"
+#include "shared_options.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "staged_directory.hpp"
 #include "standard_output.hpp"
 #include "stop_signal.hpp"
-#include "study_options.hpp"
-#include "study_output.hpp"
+#include "study/study_output.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/dataset.hpp"
 #include "vkfuse/study/study.hpp"
