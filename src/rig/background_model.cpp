@@ -2,7 +2,7 @@
 #include "core/fusion_methods.hpp"
 #include "core/validate_shape.hpp"
 #include "rig/engine.hpp"
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"
 #include "vkfuse/rig/background.hpp"
@@ -24,7 +24,7 @@ BackgroundModel::BackgroundModel(Context& context, int height, int width, int ch
     cfg.input = input;
     cfg.want_fused = true;
     cfg.metrics = {};
-    impl_ = std::make_unique<Impl>(Impl{Plan::Impl::make(context, cfg, vk::PlanKind::BackgroundMean)});
+    impl_ = std::make_unique<Impl>(Impl{vk::make_plan_of_kind(context, cfg, vk::PlanKind::BackgroundMean)});
 }
 
 BackgroundModel::~BackgroundModel() = default;

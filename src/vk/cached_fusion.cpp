@@ -5,9 +5,10 @@
 #include <cstring>
 #include <string>
 
+#include "vk/command_slot.hpp"
 #include "vk/context_impl.hpp"
+#include "vk/graph.hpp"
 #include "vk/magnitude.hpp"
-#include "vk/plan_impl.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {

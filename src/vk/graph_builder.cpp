@@ -1,9 +1,9 @@
-// The plan's graph-building helpers (vk/plan_impl.hpp): buffers, spans, the
+// The plan's graph-building helpers (vk/graph.hpp): buffers, spans, the
 // frames as uploaded and, on request, unpacked into planes.
 #include <cstring>
 #include <optional>
 
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {

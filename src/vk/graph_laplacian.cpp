@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 
 namespace vkfuse::vk {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "vk/magnitude.hpp"
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {

@@ -1,6 +1,6 @@
 // Brovey, channel-sum and the mean: one kernel from the frames as uploaded to
 // the fused planes and the read-back image, each output pixel from its K inputs.
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 
 namespace vkfuse::vk {
 

@@ -1,7 +1,7 @@
 // rule_fuse.comp over one region of every plane: the fusion rules applied
 // coefficient by coefficient across the K frames, shared by the Laplacian
 // top level and the symmetric wavelet levels.
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {

@@ -14,7 +14,8 @@
 #include <vector>
 
 #include "core/wavelet.hpp"
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
+#include "vk/plan_sparse.hpp"
 
 namespace vkfuse::vk {
 namespace {

@@ -8,7 +8,7 @@
 #pragma once
 #include <optional>
 
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 
 namespace vkfuse::vk {
 

@@ -309,6 +309,12 @@ Plan::Plan(Context& context, const PlanConfig& config)
     : impl_(Impl::with_lanes(vk::ContextAccess::of(context), config,
                              config.fuse ? vk::PlanKind::Fuse : vk::PlanKind::Score)) {}
 Plan::Plan(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+namespace vk {
+Plan make_plan_of_kind(Context& context, const PlanConfig& config, PlanKind kind) {
+    return Plan::Impl::make(context, config, kind);
+}
+}  // namespace vk
+
 Plan Plan::Impl::make(Context& context, const PlanConfig& config, vk::PlanKind plan_kind) {
     return Plan(with_lanes(vk::ContextAccess::of(context), config, plan_kind));
 }

@@ -21,7 +21,7 @@
 #include <cstdint>
 #include <span>
 
-#include "vk/plan_impl.hpp"
+#include "vk/graph.hpp"
 
 namespace vkfuse::vk {
 
