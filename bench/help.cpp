@@ -16,7 +16,7 @@ run on the same synthetic tactile frames.
 Scopes:
   (default)   every method at QVGA and VGA, K=3, S=1 on both backends; S=8, 64
               at QVGA on vulkan for brovey, laplacian and wavelet/bior4.4; K=2, 5
-              at QVGA for laplacian and wavelet/bior4.4 (about 5 minutes on an
+              at QVGA for laplacian and wavelet/bior4.4 (about 2 minutes on an
               idle 2-core lavapipe host).
               With any axis filter the default becomes one block: the given axes
               with QVGA, K=3, S=1, every method and both backends for the rest.
