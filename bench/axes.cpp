@@ -5,6 +5,7 @@
 
 #include "core/method_table.hpp"
 #include "options.hpp"
+#include "vk/method_recorders.hpp"
 
 namespace vkfuse::bench {
 namespace {
@@ -88,6 +89,29 @@ std::vector<MethodVariant> all_method_variants() {
         }
         for (Wavelet w : {Wavelet::Haar, Wavelet::Db2, Wavelet::Bior22, Wavelet::Bior44}) out.push_back({m.method, w});
     }
+    return out;
+}
+
+std::vector<MethodVariant> every_method() {
+    std::vector<MethodVariant> out;
+    for (const core::MethodInfo& m : core::method_table()) out.push_back({m.method, Wavelet::Bior44});
+    return out;
+}
+
+std::vector<MethodVariant> multiscale_methods() {
+    std::vector<MethodVariant> out;
+    for (const core::MethodInfo& m : core::method_table())
+        if (vk::method_recorder(m.method).shape == vk::GraphShape::Multiscale) out.push_back({m.method, Wavelet::Bior44});
+    return out;
+}
+
+std::vector<MethodVariant> batched_methods() {
+    std::vector<MethodVariant> out;
+    for (const core::MethodInfo& m : core::method_table())
+        if (vk::method_recorder(m.method).shape == vk::GraphShape::Pointwise && m.exact_frames == 0)
+            out.push_back({m.method, Wavelet::Bior44});
+    const auto multiscale = multiscale_methods();
+    out.insert(out.end(), multiscale.begin(), multiscale.end());
     return out;
 }
 

@@ -45,6 +45,13 @@ Size parse_size(std::string_view option, std::string_view text);  // "WxH" or qv
 
 // Every value each axis can take, in the order the matrix walks them.
 std::vector<MethodVariant> all_method_variants();
+// Every method once, at its default wavelet where it takes one.
+std::vector<MethodVariant> every_method();
+// The batching cells' methods, from the Vulkan rows: the multi-scale ones,
+// after the pointwise ones that take any number of frames (the cheapest).
+std::vector<MethodVariant> batched_methods();
+// The multi-scale methods alone (their own rows say so).
+std::vector<MethodVariant> multiscale_methods();
 const std::vector<Size>& all_sizes();
 const std::vector<int>& all_frame_counts();
 const std::vector<int>& all_sensor_counts();

@@ -147,14 +147,13 @@ PipelineCost ideal_pipeline(const Cell& c, bool eight_bit_input) {
     const double K = c.frames, frame_scale = eight_bit_input ? 0.25 : 1.0;
     PipelineCost p;
     const vk::MethodRecorder& m = vk::method_recorder(c.method.method);
-    if (m.shape == vk::GraphShape::Pointwise)
-        p = pointwise(K, m, l0, frame_scale);
-    else if (c.method.method == Method::Laplacian)
-        p = laplacian(K, c.levels, l0, frame_scale);
-    else if (c.method.method == Method::Wavelet)
-        p = wavelet(K, c.levels, l0, frame_scale, c.method.wavelet);
-    else  // a multi-scale method needs its ideal pass chain here
-        throw std::logic_error("floor model: no ideal pipeline for " + std::string(to_string(c.method.method)));
+    // The row names its chain; no default, so a chain without its pricing
+    // here does not compile (-Wswitch).
+    switch (m.floor_chain) {
+        case vk::FloorChain::Pointwise: p = pointwise(K, m, l0, frame_scale); break;
+        case vk::FloorChain::Pyramid: p = laplacian(K, c.levels, l0, frame_scale); break;
+        case vk::FloorChain::Dwt: p = wavelet(K, c.levels, l0, frame_scale, c.method.wavelet); break;
+    }
     // The metric pass over the read-back image, against the background.
     p.accesses += 2 * l0.samples();
     p.flops += kMetricFlops * l0.h * l0.w;

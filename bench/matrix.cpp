@@ -31,34 +31,24 @@ struct Slice {
 constexpr Size kQvga{320, 240}, kVga{640, 480};
 constexpr Size kQuickSize{160, 120};  // small enough that --quick takes seconds on lavapipe
 
-std::vector<MethodVariant> pyramid_methods() {
-    return {{Method::Laplacian, Wavelet::Bior44}, {Method::Wavelet, Wavelet::Bior44}};
-}
-
 // Default: the side-by-side of every method at QVGA and VGA; batching at
-// QVGA on the GPU for the cheapest method and the two pyramid methods the
-// acceptance names; K = 2, 5 for those two. The CPU reference has no batching
-// (its S-sensor time is S times its S = 1 time), so it is not run at S > 1 by
-// default. About 5 minutes on an idle 2-core lavapipe host.
+// QVGA on the GPU for the cheapest method and the multi-scale ones; K = 2, 5
+// for the multi-scale ones. The CPU reference has no batching (its S-sensor
+// time is S times its S = 1 time), so it is not run at S > 1 by default.
+// About 2 minutes on an idle 2-core lavapipe host.
 std::vector<Slice> default_slices() {
     const auto all = all_method_variants();
     const std::vector<Backend> both{Backend::Cpu, Backend::Vulkan};
-    auto batched = pyramid_methods();
-    batched.insert(batched.begin(), {Method::Brovey, Wavelet::Bior44});
     return {{all, both, {kQvga, kVga}, {3}, {1}},
-            {batched, {Backend::Vulkan}, {kQvga}, {3}, {8, 64}},
-            {pyramid_methods(), both, {kQvga}, {2, 5}, {1}}};
+            {batched_methods(), {Backend::Vulkan}, {kQvga}, {3}, {8, 64}},
+            {multiscale_methods(), both, {kQvga}, {2, 5}, {1}}};
 }
 
 std::vector<Slice> scope_slices(Scope scope) {
     const std::vector<Backend> both{Backend::Cpu, Backend::Vulkan};
     switch (scope) {
         case Scope::Quick:
-            return {{{{Method::ChannelSum, Wavelet::Bior44},
-                      {Method::Brovey, Wavelet::Bior44},
-                      {Method::Laplacian, Wavelet::Bior44},
-                      {Method::Wavelet, Wavelet::Bior44}},
-                     both, {kQuickSize}, {3}, {1, 2}, all_precisions()}};
+            return {{every_method(), both, {kQuickSize}, {3}, {1, 2}, all_precisions()}};
         case Scope::Full:
             return {{all_method_variants(), both, all_sizes(), all_frame_counts(), all_sensor_counts(), all_precisions()}};
         case Scope::Default: break;
@@ -79,7 +69,9 @@ bool contains(const std::vector<T>& v, const T& x) {
 // --method and --wavelet: a wavelet filter alone means "wavelet cells of these families".
 std::vector<MethodVariant> filter_methods(const Options& o, const std::vector<MethodVariant>& scope) {
     std::vector<Method> methods = o.methods;
-    if (methods.empty() && !o.wavelets.empty()) methods = {Method::Wavelet};
+    if (methods.empty() && !o.wavelets.empty())
+        for (const core::MethodInfo& m : core::method_table())
+            if (m.uses_wavelet) methods.push_back(m.method);
     std::vector<MethodVariant> out;
     for (const auto& m : all_method_variants()) {
         const bool method_ok = methods.empty() ? contains(scope, m) : contains(methods, m.method);

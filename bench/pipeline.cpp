@@ -160,7 +160,7 @@ json::Value row_json(const Row& r, const std::string& device, int in_flight, dou
 int run_pipeline(const Options& o) {
     std::vector<MethodVariant> methods;
     if (o.methods.empty()) {
-        methods = {{Method::Brovey}, {Method::Laplacian}, {Method::Wavelet, Wavelet::Bior44}};
+        methods = batched_methods();
     } else {
         for (Method m : o.methods) {
             if (o.wavelets.empty() || !MethodVariant{m}.has_wavelet())

@@ -208,7 +208,7 @@ TEST_F(CachedFusionTest, RefusesWhatItCannotFuse) {
     FusionSpec brovey;
     brovey.method = Method::Brovey;
     expect_error([&] { vk::CachedFusion(ctx(), {brovey, 32, 32, 3, 2, kFrames}, s.all()); }, subject,
-                 ErrorKind::InvalidArgument, "only the wavelet and Laplacian");
+                 ErrorKind::InvalidArgument, "brovey has no coefficients to fuse from");
     expect_error([&] { vk::CachedFusion(ctx(), {spec, 32, 32, 3, 3, kFrames}, s.all()); }, subject,
                  ErrorKind::InvalidArgument, "images for");
 }

@@ -17,16 +17,22 @@ constexpr int kMaxLaplacianLevels = 32;
 // exceed what any int-sized image carries, so the size decides first.
 constexpr int kMaxWaveletLevels = 31;
 
+// Periodization wavelets are fused tile-sparsely: their coefficients over a
+// rectangle depend on a window of the frames its filter lengths bound.
+bool periodization_only(const FusionSpec& spec) { return spec.mode == WaveletMode::Periodization; }
+
 // In enum order: method_table() hands these out as one span.
 const MethodInfo kRows[] = {
     {Method::ChannelSum, "channel-sum", "R from frame 1, G from frame 2, B from frame 3 (K = 3, RGB)", "channel-sum",
-     0, 0, 3, 3, "red, green, blue LED", false, fuse_channel_sum, 0, 0, "#1f77b4"},
+     0, 0, 3, 3, "red, green, blue LED", false, true, fuse_channel_sum, 0, 0, "#1f77b4", nullptr},
     {Method::Brovey, "brovey", "each frame weighted by its share of the pixel's sum", "brovey", 0, 0, 0, 0, "",
-     false, fuse_brovey, 0, 0, "#ff7f0e"},
+     false, false, fuse_brovey, 0, 0, "#ff7f0e", nullptr},
     {Method::Laplacian, "laplacian", "OpenCV-exact Laplacian pyramids, fused level by level", "a Laplacian pyramid",
-     4, kMaxLaplacianLevels, 0, 0, "31 reach 1x1 from any size", false, fuse_laplacian, 1.7, 2.0, "#2ca02c"},
+     4, kMaxLaplacianLevels, 0, 0, "31 reach 1x1 from any size", false, false, fuse_laplacian, 1.7, 2.0, "#2ca02c",
+     nullptr},
     {Method::Wavelet, "wavelet", "PyWavelets' 2-D DWT, bands fused by the rules", "a wavelet transform", 3,
-     kMaxWaveletLevels, 0, 0, "no image carries more", true, fuse_wavelet, 1.7, 2.0, "#e377c2"},
+     kMaxWaveletLevels, 0, 0, "no image carries more", true, false, fuse_wavelet, 1.7, 2.0, "#e377c2",
+     periodization_only},
 };
 
 }  // namespace
@@ -43,6 +49,11 @@ const MethodInfo& method_info(Method m) {
 }
 
 std::span<const MethodInfo> method_table() { return kRows; }
+
+bool fuses_tile_sparse(const FusionSpec& spec) {
+    const MethodInfo& row = method_info(spec.method);
+    return row.tile_sparse && row.tile_sparse(spec);
+}
 
 std::string with_method_names(std::string_view help, std::string_view last_separator) {
     std::string out(help);

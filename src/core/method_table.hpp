@@ -30,6 +30,9 @@ struct MethodInfo {
     // Why the limits above hold, for messages ("red, green, blue LED").
     std::string_view limits_why;
     bool uses_wavelet;   // the wavelet and mode apply
+    // Frame k becomes channel k of the image: the study gives such a method a
+    // combination's settings in the order that lights each channel best.
+    bool frames_are_channels;
     // The double-precision reference (docs/spec.md), on frames fuse_reference
     // has validated: one shape, finite, K and C within the limits above.
     ImageD (*reference)(std::span<const ImageD> frames, const FusionSpec& spec);
@@ -37,7 +40,14 @@ struct MethodInfo {
     // per frame and fixed: what the CLI checks before fusing on the CPU.
     double reference_images_per_frame, reference_images_fixed;
     std::string_view plot_colour;  // vkfuse-bench's SVG (wavelets: one per wavelet there)
+    // Whether a fusion of this spec can be fused over a rectangle of changed
+    // tiles alone (core/sparse_wavelet.hpp, the skip policy `tiles`); null:
+    // never. The planner, its CPU twin and the plan all ask the row.
+    bool (*tile_sparse)(const FusionSpec& spec);
 };
+
+// method_info(spec.method).tile_sparse, false where the row has none.
+bool fuses_tile_sparse(const FusionSpec& spec);
 
 const MethodInfo& method_info(Method m);
 // Every row, in the order of the Method enumerators.

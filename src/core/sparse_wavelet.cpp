@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/method_table.hpp"
 #include "core/rules.hpp"
 #include "core/wavelet.hpp"
 #include "core/wavelet_axis.hpp"
@@ -101,7 +102,7 @@ CircularRange cover(const std::vector<char>& marks) {
 
 std::optional<SparseChoice> choose_sparse(const FusionSpec& spec, int H, int W, int frames, int channels,
                                           const std::vector<bool>& changed, int tiles_x) {
-    if (spec.method != Method::Wavelet || spec.mode != WaveletMode::Periodization) return std::nullopt;
+    if (!fuses_tile_sparse(spec)) return std::nullopt;
     std::vector<char> rows(std::size_t(H), 0), cols(std::size_t(W), 0);
     for (std::size_t t = 0; t < changed.size(); ++t) {
         if (!changed[t]) continue;
@@ -142,8 +143,9 @@ double SparseWaveletPlan::work_fraction(int frames, int channels) const {
 }
 
 SparseWaveletPlan plan_sparse_wavelet(const FusionSpec& spec, int height, int width, RangeRect output) {
-    if (spec.method != Method::Wavelet || spec.mode != WaveletMode::Periodization)
-        throw std::invalid_argument("plan_sparse_wavelet: periodization wavelets only");
+    if (!fuses_tile_sparse(spec))
+        throw std::invalid_argument("plan_sparse_wavelet: " + std::string(to_string(spec.method)) +
+                                    " is not fused tile-sparsely (its method row)");
     const FilterBank& fb = filter_bank(spec.wavelet);
     const int L = spec.effective_levels();
     SparseWaveletPlan plan;

@@ -2,6 +2,7 @@
 #include <cctype>
 #include <string>
 
+#include "core/method_table.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/ros2/publisher.hpp"
 
@@ -16,7 +17,7 @@ std::string topic_token(std::string_view serial) {
 
 std::string method_label(const FusionSpec& fusion) {
     std::string label(to_string(fusion.method));
-    if (fusion.method == Method::Wavelet) label += "/" + std::string(to_string(fusion.wavelet));
+    if (core::method_info(fusion.method).uses_wavelet) label += "/" + std::string(to_string(fusion.wavelet));
     return label;
 }
 

@@ -50,7 +50,7 @@ struct Evaluator::Impl {
         return {method.spec, data.height, data.width, 3, int(data.objects.size()) + 1, int(data.settings.size())};
     }
     bool uses_cache(const StudyMethod& method, std::size_t k) const {
-        return context && k > 1 && (method.spec.method == Method::Wavelet || method.spec.method == Method::Laplacian) &&
+        return context && k > 1 && vk::CachedFusion::supports(method.spec.method) &&
                vk::CachedFusion::cache_bytes(cache_shape(method)) <= kMaxCacheBytes;
     }
     vk::CachedFusion& cache_for(const StudyMethod& method) {

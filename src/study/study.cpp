@@ -336,7 +336,7 @@ std::vector<StudyMethod> select_study_methods(const std::vector<std::string>& na
 std::vector<std::size_t> fusion_order(const StudyMethod& method, const std::vector<Illumination>& settings,
                                       std::vector<std::size_t> combination) {
     std::sort(combination.begin(), combination.end());
-    if (method.spec.method != Method::ChannelSum) return combination;
+    if (!core::method_info(method.spec.method).frames_are_channels) return combination;
     std::vector<std::size_t> best = combination, order = combination;
     const auto score = [&](const std::vector<std::size_t>& o) {
         int sum = 0;

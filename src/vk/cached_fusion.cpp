@@ -9,6 +9,7 @@
 #include "vk/context_impl.hpp"
 #include "vk/graph.hpp"
 #include "vk/magnitude.hpp"
+#include "vk/method_recorders.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::vk {
@@ -60,8 +61,7 @@ CachedSources decompose(Context::Impl& ctx, const PlanConfig& cfg, std::uint32_t
                      ctx.device_addresses_only || needs_device_addresses(cfg, ctx.properties.limits));
         GraphBuilder g{ctx, cfg, rec, buffers, 0, {upload.span()}};
         FrameSource input(g, upload.span());
-        group.levels = cfg.fusion.method == Method::Wavelet ? record_wavelet_decompose(g, input)
-                                                            : record_laplacian_decompose(g, input);
+        group.levels = method_recorder(cfg.fusion.method).decompose(g, input);
         rec.finish();
         slot.submit_and_wait();
     }
@@ -104,10 +104,13 @@ std::uint64_t CachedFusion::cache_bytes(const CachedFusionShape& s) {
            std::uint64_t(s.height) * std::uint64_t(s.width) * 4;
 }
 
+bool CachedFusion::supports(Method method) { return method_recorder(method).caches_coefficients(); }
+
 CachedFusion::CachedFusion(Context& context, const CachedFusionShape& shape, std::span<const FrameView> images)
     : ctx_(ContextAccess::of(context)), shape_(shape), cache_(std::make_unique<Cache>()) {
-    if (shape.fusion.method != Method::Wavelet && shape.fusion.method != Method::Laplacian)
-        throw Error(ErrorKind::InvalidArgument, "cached fusion: only the wavelet and Laplacian methods fuse from coefficients");
+    if (!supports(shape.fusion.method))
+        throw Error(ErrorKind::InvalidArgument, "cached fusion: " + std::string(to_string(shape.fusion.method)) +
+                                                    " has no coefficients to fuse from (its Vulkan row decomposes nothing)");
     if (shape.sources < 2 || shape.frames < 2)
         throw Error(ErrorKind::InvalidArgument, "cached fusion: needs a background and a source, and two frames each");
     if (images.size() != std::size_t(shape.sources) * std::size_t(shape.frames))
@@ -185,9 +188,8 @@ CachedFusion::Graph& CachedFusion::graph_for(std::size_t k) {
     for (const Buffer& b : cache_->buffers) fixed.push_back(b.span());
     GraphBuilder g{ctx_, gr.cfg, rec, gr.buffers, 0, fixed};
     const std::uint32_t sources = std::uint32_t(shape_.sources);
-    const VkDeviceAddress fused = shape_.fusion.method == Method::Wavelet
-                                      ? record_wavelet_cached(g, cache_->groups, sources, gr.table.span())
-                                      : record_laplacian_cached(g, cache_->groups, sources, gr.table.span());
+    const VkDeviceAddress fused =
+        method_recorder(shape_.fusion.method).fuse_cached(g, cache_->groups, sources, gr.table.span());
     record_metrics(g, fused, fused, gr.readback.span(), std::nullopt, std::uint32_t(shape_.sources));
     rec.finish();
     graphs_.splice(graphs_.end(), fresh);

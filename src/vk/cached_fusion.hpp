@@ -59,6 +59,9 @@ public:
     // Bytes of device memory the decomposition of `shape` takes at its peak
     // (the cache it keeps takes less).
     static std::uint64_t cache_bytes(const CachedFusionShape& shape);
+    // Whether the method's Vulkan row decomposes into coefficients a cache
+    // can hold (vk/method_recorders.hpp); the constructor refuses the others.
+    static bool supports(Method method);
 
     // Each combination (2 or more distinct frame indices, in fusion order,
     // all combinations of one size): the metrics of sources 1.. fused over

@@ -17,12 +17,24 @@ VkDeviceAddress wavelet(GraphBuilder& g, FrameSource& input, std::optional<Devic
     return record_wavelet(g, input);
 }
 
-constexpr MethodRecorder kChannelSum{Method::ChannelSum, GraphShape::Pointwise, pointwise,
-                                     VKFUSE_POINTWISE_CHANNEL_SUM, 0, 0, 1.0 / 3, 0};
+constexpr MethodRecorder kChannelSum{Method::ChannelSum,
+                                     GraphShape::Pointwise,
+                                     pointwise,
+                                     VKFUSE_POINTWISE_CHANNEL_SUM,
+                                     0,
+                                     0,
+                                     1.0 / 3,
+                                     0,
+                                     nullptr,
+                                     nullptr,
+                                     FloorChain::Pointwise};
 // Brovey: clamp, sum, weight and weighted sum per frame sample.
-constexpr MethodRecorder kBrovey{Method::Brovey, GraphShape::Pointwise, pointwise, VKFUSE_POINTWISE_BROVEY, 0, 0, 1, 4};
-constexpr MethodRecorder kLaplacian{Method::Laplacian, GraphShape::Multiscale, laplacian, 0, 0.4, 0.4, 1, 0};
-constexpr MethodRecorder kWavelet{Method::Wavelet, GraphShape::Multiscale, wavelet, 0, 2.4, 2.4, 1, 0};
+constexpr MethodRecorder kBrovey{Method::Brovey, GraphShape::Pointwise, pointwise, VKFUSE_POINTWISE_BROVEY, 0, 0, 1, 4,
+                                 nullptr, nullptr, FloorChain::Pointwise};
+constexpr MethodRecorder kLaplacian{Method::Laplacian, GraphShape::Multiscale, laplacian, 0, 0.4, 0.4, 1, 0,
+                                    record_laplacian_decompose, record_laplacian_cached, FloorChain::Pyramid};
+constexpr MethodRecorder kWavelet{Method::Wavelet, GraphShape::Multiscale, wavelet, 0, 2.4, 2.4, 1, 0,
+                                  record_wavelet_decompose, record_wavelet_cached, FloorChain::Dwt};
 
 }  // namespace
 

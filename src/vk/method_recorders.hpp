@@ -21,6 +21,13 @@ enum class GraphShape {
     Multiscale,
 };
 
+// The ideal pipeline the bench's floor model prices for a method.
+enum class FloorChain {
+    Pointwise,  // one pass from the frames to the image
+    Pyramid,    // Gaussian and Laplacian pyramids, fused and collapsed
+    Dwt,        // a 2-D wavelet transform, fused and inverted
+};
+
 struct MethodRecorder {
     Method method;
     GraphShape shape;
@@ -40,6 +47,18 @@ struct MethodRecorder {
     // The ideal pointwise pass (bench floor model): the fraction of each frame
     // it reads and the arithmetic per frame sample it does.
     double read_fraction, flops_per_frame_sample;
+    // Fusing many combinations from coefficients decomposed once (the
+    // study's cache, vk/cached_fusion.hpp): the decomposition of every frame
+    // of the input, and the fusion of a batch of combinations from it
+    // (graph.hpp's record_*_decompose and record_*_cached). Null for a
+    // method that has nothing to decompose: the cache refuses it by name.
+    std::vector<PlaneView> (*decompose)(GraphBuilder& g, FrameSource& input);
+    VkDeviceAddress (*fuse_cached)(GraphBuilder& g, std::span<const CachedSources> groups, std::uint32_t sources,
+                                   DeviceSpan table);
+    // The passes the bench's floor model prices as the method's ideal
+    // pipeline (bench/floor_model.cpp).
+    FloorChain floor_chain;
+    bool caches_coefficients() const { return decompose != nullptr; }
 };
 
 const MethodRecorder& method_recorder(Method m);

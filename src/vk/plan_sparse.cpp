@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/method_table.hpp"
 #include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::vk {
@@ -33,8 +34,8 @@ core::CircularRange whole(int n) { return {n, 0, n}; }
 }  // namespace
 
 bool sparse_capable(const PlanConfig& cfg) {
-    return cfg.skip.policy == SkipPolicy::Tiles && cfg.fuse && cfg.fusion.method == Method::Wavelet &&
-           cfg.fusion.mode == WaveletMode::Periodization && cfg.precision == Precision::Fp32;
+    return cfg.skip.policy == SkipPolicy::Tiles && cfg.fuse && core::fuses_tile_sparse(cfg.fusion) &&
+           cfg.precision == Precision::Fp32;
 }
 
 SparseRegions::SparseRegions(Context::Impl& ctx, const PlanConfig& cfg) : cfg_(cfg) {
