@@ -5,7 +5,7 @@
 
 #include "core/method_table.hpp"
 #include "options.hpp"
-#include "vk/method_recorders.hpp"
+#include "vk/plan/method_recorders.hpp"
 
 namespace vkfuse::bench {
 namespace {

@@ -15,8 +15,8 @@
 #include "pipeline.hpp"
 #include "scenes.hpp"
 #include "timing.hpp"
-#include "vk/copy_bandwidth.hpp"
-#include "vk/kernel_access.hpp"
+#include "vk/probes/copy_bandwidth.hpp"
+#include "vk/probes/kernel_access.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::bench {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/wavelet.hpp"
-#include "vk/method_recorders.hpp"
+#include "vk/plan/method_recorders.hpp"
 
 namespace vkfuse::bench {
 namespace {

@@ -1,11 +1,11 @@
 // The device's floor under a cell: what the ideal pipeline for the cell's
 // method and shape must do (memory accesses, floating-point work, dispatches),
 // priced at the costs the probe kernels measured this run
-// (vk/kernel_access.hpp). floor_ms / median_ms says how close a cell runs to
+// (vk/probes/kernel_access.hpp). floor_ms / median_ms says how close a cell runs to
 // what the device allows a pipeline of that method.
 #pragma once
 #include "result.hpp"
-#include "vk/kernel_access.hpp"
+#include "vk/probes/kernel_access.hpp"
 
 namespace vkfuse::bench {
 

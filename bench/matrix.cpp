@@ -10,7 +10,7 @@
 #include "core/method_table.hpp"
 #include "inputs.hpp"
 #include "options.hpp"
-#include "vk/method_recorders.hpp"
+#include "vk/plan/method_recorders.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::bench {

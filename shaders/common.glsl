@@ -46,7 +46,7 @@ uint linear_index(uint group_size) {
 }
 
 // The fused sensor of a fusing kernel's slot (workgroup z / C). A cached
-// fusion (vk/cached_fusion.hpp) fuses sensors that come in blocks of
+// fusion (study/cached_fusion.hpp) fuses sensors that come in blocks of
 // `period`, one per source, and reaches each group of sources' coefficients
 // through a dispatch of its own: slot i is member first + i % count of block
 // i / count. A plan's dispatch covers every sensor (first 0, count = period).

@@ -16,7 +16,7 @@
 //    per tap, for devices whose double rate is a fraction of their float rate.
 //    `precise` keeps the compiler from reassociating the error terms away.
 //    Vulkan promises fma only the precision of a multiply and an add; where
-//    the context found it not fused (vk/fma_probe.cpp, SPLIT_PRODUCTS) each
+//    the context found it not fused (vk/probes/fma_probe.cpp, SPLIT_PRODUCTS) each
 //    product's error comes from Dekker's split instead: exact for any float
 //    product that neither overflows nor underflows, at about 17 operations.
 //

@@ -1,5 +1,5 @@
 // Codes that the kernels and the C++ side share, declared once: included by
-// shaders/common.glsl and by src/vk/kernel_codes.hpp, which static_asserts
+// shaders/common.glsl and by src/vk/engine/kernel_codes.hpp, which static_asserts
 // each against the C++ enum it mirrors. Plain #defines, so that both GLSL and
 // C++ read this file as it is.
 #ifndef VKFUSE_KERNEL_CODES_H

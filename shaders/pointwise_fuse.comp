@@ -32,7 +32,7 @@ layout(push_constant, std430) uniform Push {
 // docs/spec.md's s >= 1e-6, with the threshold the smallest float >= 1e-6
 // (0x358637BE; the literal 1e-6 rounds below it, to 9.99999997e-7, which
 // would take the ratio for a sum that is below 1e-6). Float32 frames reach the
-// device scaled by a power of two per sensor (vk/magnitude.hpp), and so does
+// device scaled by a power of two per sensor (vk/engine/magnitude.hpp), and so does
 // this threshold, written by the host every run; 8-bit frames never are.
 float brovey_threshold(uint s) {
     return pc.scaled_threshold != 0u ? BUF(thresholds).v[s] : uintBitsToFloat(0x358637BEu);
@@ -42,7 +42,7 @@ float brovey_threshold(uint s) {
 // four pixels, or one pixel in .x). Brovey takes two rounds over the frames:
 // s = sum_k max(v_k, 0) first, then sum_k (max(v_k, 0) / s) v_k, each term
 // divided before it is multiplied so that no product of two small values
-// underflows (float32 frames keep their own magnitude, vk/magnitude.hpp).
+// underflows (float32 frames keep their own magnitude, vk/engine/magnitude.hpp).
 struct Fuser {
     vec4 a, b;  // mean: Kahan sum and compensation; brovey: s, then the weighted sum
     vec4 mean_sum;

@@ -1,5 +1,5 @@
 #version 460
-// Device probe (vk/kernel_access.cpp): dst = 2 * src, one float per
+// Device probe (vk/probes/kernel_access.cpp): dst = 2 * src, one float per
 // invocation, reached through device addresses as every vkfuse kernel
 // reaches its buffers.
 #extension GL_EXT_buffer_reference : require

@@ -1,5 +1,5 @@
 #version 460
-// Device probe (vk/kernel_access.cpp): dst = 2 * src, four floats per
+// Device probe (vk/probes/kernel_access.cpp): dst = 2 * src, four floats per
 // invocation, reached through device addresses.
 #extension GL_EXT_buffer_reference : require
 layout(local_size_x = 256) in;

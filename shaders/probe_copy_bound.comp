@@ -1,5 +1,5 @@
 #version 460
-// Device probe (vk/kernel_access.cpp): dst = 2 * src, one float per
+// Device probe (vk/probes/kernel_access.cpp): dst = 2 * src, one float per
 // invocation, through descriptor-bound storage buffers.
 layout(local_size_x = 256) in;
 layout(std430, set = 0, binding = 0) readonly buffer Src { float v[]; } src;

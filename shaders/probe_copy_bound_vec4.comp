@@ -1,5 +1,5 @@
 #version 460
-// Device probe (vk/kernel_access.cpp): dst = 2 * src, four floats per
+// Device probe (vk/probes/kernel_access.cpp): dst = 2 * src, four floats per
 // invocation, through descriptor-bound storage buffers.
 layout(local_size_x = 256) in;
 layout(std430, set = 0, binding = 0) readonly buffer Src { vec4 v[]; } src;

@@ -1,5 +1,5 @@
 #version 460
-// Device probe (vk/kernel_access.cpp): arithmetic rate. Each invocation runs
+// Device probe (vk/probes/kernel_access.cpp): arithmetic rate. Each invocation runs
 // ROUNDS steps y = y * x + 0.5 on four independent lanes, which converge to
 // 0.5 / (1 - x) for |x| < 1, so the result can be checked.
 layout(local_size_x = 256) in;

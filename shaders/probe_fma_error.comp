@@ -1,5 +1,5 @@
 #version 460
-// Device probe (vk/fma_probe.cpp): is fma fused? Each invocation writes
+// Device probe (vk/probes/fma_probe.cpp): is fma fused? Each invocation writes
 // fma(a, b, -a*b) for one pair: a product's exact rounding error where fma is
 // fused (one rounding), 0 where it is a multiply and an add, which is all
 // Vulkan promises. Compensated float32 filters (compensated.glsl) rely on the

@@ -1,5 +1,5 @@
 #version 460
-// Device probe (vk/kernel_access.cpp): the cost of exchanging values through
+// Device probe (vk/probes/kernel_access.cpp): the cost of exchanging values through
 // workgroup shared memory. Every round each invocation stores its value,
 // waits at a barrier, takes its right neighbour's (wrapping within the group)
 // times 2, and waits again: what a tiled kernel pays to share its halo. After

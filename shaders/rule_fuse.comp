@@ -7,7 +7,7 @@
 // (a wavelet approximation, the top of a pyramid) the base rule applies, the
 // detail rule elsewhere. With a table, fused sensor s takes its K frames from
 // source sensor-frames table[s*K + k] (planes table[s*K + k]*C + c) instead:
-// frames decomposed once, fused in many combinations (vk/cached_fusion.hpp).
+// frames decomposed once, fused in many combinations (study/cached_fusion.hpp).
 // Nothing is written inside the top-left skip_w x skip_h corner (a level's
 // approximation that the inverse overwrites). Where rows are whole quads
 // (quads: width, row_stride and plane_stride multiples of 4) an invocation

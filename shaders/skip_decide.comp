@@ -3,7 +3,7 @@
 #include "common.glsl"
 // A skipping plan's decision, taken on the device so that detection, the
 // decision, compaction and fusion are one submit (SkipPolicy::Idle;
-// vk/plan_skip.hpp has the pass chain). One workgroup:
+// vk/plan/plan_skip.hpp has the pass chain). One workgroup:
 //  1. sensor s is fused when a tile's score exceeds the threshold: the host's
 //     rule !(score <= threshold), with pc.threshold the largest float not
 //     above the plan's, so that both decide alike on every float score;

@@ -1,6 +1,6 @@
 // What a skipping plan that decides on the device (SkipPolicy::Idle,
-// vk/plan_skip.hpp) keeps in its two small buffers, for S = pc.sensors.
-// SkipDecisionLayout in vk/plan_skip.cpp is the host's view of the same.
+// vk/plan/plan_skip.hpp) keeps in its two small buffers, for S = pc.sensors.
+// SkipDecisionLayout in vk/plan/plan_skip.cpp is the host's view of the same.
 //
 // host_args (host-written):
 //   [0]                       D, the fusion's indirect dispatches

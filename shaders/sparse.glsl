@@ -1,4 +1,4 @@
-// Tile-sparse fusion (src/vk/plan_sparse.hpp): a dispatch whose push field
+// Tile-sparse fusion (src/vk/passes/plan_sparse.hpp): a dispatch whose push field
 // `region` is not 0 computes, for the sensor in slot z / slot_planes, only
 // what its region record names. Record (8 uints from regions[region - 1 + 8 *
 // slot]): line start, line count, block start, block count, half, sensor,

@@ -4,7 +4,7 @@
 // must give the same bits for every method, input type and shape, including
 // shapes whose planes are not a multiple of four samples (the kernels' scalar
 // paths). So must a plan recorded in blocks of its sensors, each block bound
-// to its range of the buffers (vk/sensor_blocks.hpp).
+// to its range of the buffers (vk/plan/sensor_blocks.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "vk/plan_impl.hpp"
-#include "vk/sensor_blocks.hpp"
+#include "vk/plan/plan_impl.hpp"
+#include "vk/plan/sensor_blocks.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/rig/background.hpp"
 

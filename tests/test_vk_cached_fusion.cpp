@@ -11,7 +11,7 @@
 
 #include "expect_error.hpp"
 #include "test_support.hpp"
-#include "vk/cached_fusion.hpp"
+#include "study/cached_fusion.hpp"
 #include "vk_fixture.hpp"
 
 namespace vkfuse::test {

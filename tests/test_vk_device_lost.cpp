@@ -12,7 +12,7 @@
 
 #include "expect_error.hpp"
 #include "lose_device.hpp"
-#include "vk/api.hpp"
+#include "vk/engine/api.hpp"
 #include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::test {

@@ -12,8 +12,8 @@
 
 #include "expect_error.hpp"
 #include "test_support.hpp"
-#include "vk/buffer.hpp"
-#include "vk/context_impl.hpp"
+#include "vk/engine/buffer.hpp"
+#include "vk/engine/context_impl.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "expect_error.hpp"
-#include "vk/kernel_access.hpp"
+#include "vk/probes/kernel_access.hpp"
 #include "vk_fixture.hpp"
 
 namespace vkfuse::test {

@@ -1,12 +1,12 @@
-// Every kernel's interface is read from its SPIR-V (vk/kernel_interface.hpp)
+// Every kernel's interface is read from its SPIR-V (vk/engine/kernel_interface.hpp)
 // and each dispatch is checked against it. These tests pin the reader to
 // kernels whose declarations are known, in both binding variants.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "vk/kernel_interface.hpp"
-#include "vk/shader_registry.hpp"
+#include "vk/engine/kernel_interface.hpp"
+#include "vk/engine/shader_registry.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::test {

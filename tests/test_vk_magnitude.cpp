@@ -269,7 +269,7 @@ TEST_F(VulkanMagnitude, BackgroundOfAnotherMagnitude) {
         } catch (const Error& e) {
             EXPECT_EQ(e.kind(), ErrorKind::Numeric) << e.what();
             // One scale holds values within 2^124 of each other (2^100 where
-            // the device may flush subnormals; vk/magnitude.hpp).
+            // the device may flush subnormals; vk/engine/magnitude.hpp).
             EXPECT_GT(double(b) / double(a), widest) << e.what();
         }
     }

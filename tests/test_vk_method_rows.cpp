@@ -1,5 +1,5 @@
 // Every method fact on its row: each consumer that once switched on a Method
-// now asks the method's rows (core/method_table.hpp, vk/method_recorders.hpp),
+// now asks the method's rows (core/method_table.hpp, vk/plan/method_recorders.hpp),
 // so walking every row shows what a new method gets: the study's cache
 // either fuses it or refuses it naming it, tile-sparse planning likewise,
 // and the two rows agree on what the method is.
@@ -13,8 +13,8 @@
 #include "core/sparse_wavelet.hpp"
 #include "vkfuse/core/error.hpp"
 #include "test_support.hpp"
-#include "vk/cached_fusion.hpp"
-#include "vk/method_recorders.hpp"
+#include "study/cached_fusion.hpp"
+#include "vk/plan/method_recorders.hpp"
 #include "vk_fixture.hpp"
 
 namespace vkfuse::test {

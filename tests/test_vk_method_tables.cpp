@@ -1,5 +1,5 @@
 // Every fusion method has its row in both method tables: core/method_table.hpp
-// (names, limits, reference) and vk/method_recorders.hpp (how a plan records
+// (names, limits, reference) and vk/plan/method_recorders.hpp (how a plan records
 // it). A Method without a row does not compile (both lookups switch over every
 // enumerator with no default); these tests check what the compiler cannot:
 // that the rows agree with their enumerators and cover the enum.
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/method_table.hpp"
-#include "vk/method_recorders.hpp"
+#include "vk/plan/method_recorders.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::test {

@@ -11,7 +11,7 @@
 
 #include "temp_dir.hpp"
 #include "test_support.hpp"
-#include "vk/pipeline_cache.hpp"
+#include "vk/engine/pipeline_cache.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/core/error.hpp"
 

@@ -1,7 +1,7 @@
 // The push-constant contract, field by field: every dispatch names each
 // scalar it pushes as the kernel's GLSL Push block does, and the recorder
 // checks name, type and offset against the kernel's SPIR-V
-// (vk/push_constants.hpp, vk/kernel_interface.hpp). Here a copy of a
+// (vk/engine/push_constants.hpp, vk/engine/kernel_interface.hpp). Here a copy of a
 // kernel's SPIR-V has two fields of its block swapped, as an edit of the
 // GLSL that forgot the C++ side would leave it, and the plan that dispatches
 // it is refused at build, naming the kernel and the field.
@@ -13,9 +13,9 @@
 
 #include "expect_error.hpp"
 #include "test_support.hpp"
-#include "vk/context_impl.hpp"
-#include "vk/kernel_interface.hpp"
-#include "vk/shader_registry.hpp"
+#include "vk/engine/context_impl.hpp"
+#include "vk/engine/kernel_interface.hpp"
+#include "vk/engine/shader_registry.hpp"
 #include "vk_fixture.hpp"
 
 namespace vkfuse::test {

@@ -1,4 +1,4 @@
-// Skipping decided on the device (SkipPolicy::Idle, vk/plan_skip.hpp): the
+// Skipping decided on the device (SkipPolicy::Idle, vk/plan/plan_skip.hpp): the
 // decision, the frames and backgrounds moved into their slots and the
 // indirect dispatches all happen inside the cycle's one submit. Pressed
 // sensors come and go across six sensors, so fused sensors move into slots
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "skip_scene.hpp"
-#include "vk/plan_skip.hpp"
+#include "vk/plan/plan_skip.hpp"
 #include "vk_fixture.hpp"
 #include "vkfuse/core/reference.hpp"
 

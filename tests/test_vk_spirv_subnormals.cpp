@@ -15,8 +15,8 @@
 
 #include "expect_error.hpp"
 #include "temp_dir.hpp"
-#include "vk/shader_registry.hpp"
-#include "vk/spirv_subnormals.hpp"
+#include "vk/engine/shader_registry.hpp"
+#include "vk/engine/spirv_subnormals.hpp"
 
 namespace vkfuse::test {
 namespace {

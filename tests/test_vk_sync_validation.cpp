@@ -7,9 +7,9 @@
 
 #include <algorithm>
 
-#include "vk/buffer.hpp"
-#include "vk/context_impl.hpp"
-#include "vk/timed_commands.hpp"
+#include "vk/engine/buffer.hpp"
+#include "vk/engine/context_impl.hpp"
+#include "vk/engine/timed_commands.hpp"
 #include "vk_fixture.hpp"
 
 namespace vkfuse::test {

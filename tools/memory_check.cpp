@@ -6,7 +6,7 @@
 
 #include "core/method_table.hpp"
 #include "io/memory_available.hpp"
-#include "vk/method_recorders.hpp"
+#include "vk/plan/method_recorders.hpp"
 #include "vkfuse/core/error.hpp"
 
 namespace vkfuse::cli {

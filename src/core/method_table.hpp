@@ -3,7 +3,7 @@
 //
 // method_info() switches over every Method with no default, so under -Wall
 // -Werror a Method without its row does not compile; the Vulkan side has its
-// own row per method (vk/method_recorders.hpp), checked the same way. Names,
+// own row per method (vk/plan/method_recorders.hpp), checked the same way. Names,
 // parsing, default levels, validation, the reference dispatch, help text, the
 // bench's axes, memory estimates and plot colours all read these rows.
 #pragma once

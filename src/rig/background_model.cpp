@@ -2,7 +2,7 @@
 #include "core/fusion_methods.hpp"
 #include "core/validate_shape.hpp"
 #include "rig/engine.hpp"
-#include "vk/graph.hpp"
+#include "vk/passes/graph.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"
 #include "vkfuse/rig/background.hpp"

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "vk/cached_fusion.hpp"
+#include "study/cached_fusion.hpp"
 #include "vkfuse/core/reference.hpp"
 #include "vkfuse/vk/plan.hpp"
 

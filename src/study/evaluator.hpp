@@ -16,7 +16,7 @@ namespace vkfuse::study {
 // settings' backgrounds. On the device, a multi-scale method (wavelet,
 // Laplacian) decomposes every frame (the objects' and the backgrounds') once
 // and fuses batches of combinations from those coefficients
-// (vk/cached_fusion.hpp) when asked for many (score_many); a single
+// (study/cached_fusion.hpp) when asked for many (score_many); a single
 // combination, the pointwise methods and a dataset too large for the cache
 // run a plan per combination whose sensors are the objects, the fused
 // background computed once for all of them (plans kept per method and
