@@ -79,6 +79,8 @@ bool wants_help(std::span<const std::string> argv) {
     return false;
 }
 
+std::string option_help(const OptionSpec& option) { return core::with_method_names(option.help); }
+
 std::string help_text(const CommandSpec& spec) {
     std::string text = "Usage: " + std::string(spec.usage) + "\n\n" + std::string(spec.details) + "\n\nOptions:\n";
     auto label = [](const OptionSpec& o) {
@@ -92,7 +94,7 @@ std::string help_text(const CommandSpec& spec) {
     };
     bool names_methods = false;
     for (const OptionSpec& o : spec.options) {
-        text += line(label(o), core::with_method_names(o.help));  // "{methods}"
+        text += line(label(o), option_help(o));
         names_methods = names_methods || o.help.find("{methods}") != std::string_view::npos;
     }
     text += line("-h, --help", "show this help and exit");

@@ -63,6 +63,8 @@ bool wants_help(std::span<const std::string> argv);
 
 // The --help text of a subcommand: usage, details, options, example.
 std::string help_text(const CommandSpec& spec);
+// One option's help line, "{methods}" replaced by the method names.
+std::string option_help(const OptionSpec& option);
 
 // "a,b,c" -> {"a", "b", "c"}: the value of a list option (empty items kept,
 // for the caller to refuse by name).

@@ -119,4 +119,33 @@ py::array_t<float> to_array(const BasicImage<T>& img, bool gray) {
 template py::array_t<float> to_array(const BasicImage<float>&, bool);
 template py::array_t<float> to_array(const BasicImage<double>&, bool);
 
+py::array_t<float> fused_array(const py::object& out, int sensors, int height, int width, int channels, bool gray) {
+    std::vector<py::ssize_t> shape = {sensors, height, width};
+    if (!gray) shape.push_back(channels);
+    if (out.is_none()) return py::array_t<float>(shape);
+    std::string want = "(";
+    for (std::size_t i = 0; i < shape.size(); ++i) want += (i ? ", " : "") + std::to_string(shape[i]);
+    want += ")";
+    if (!py::isinstance<py::array>(out)) throw Error(ErrorKind::InvalidArgument, "out: not a numpy array");
+    py::array a = py::reinterpret_borrow<py::array>(out);
+    const py::dtype d = a.dtype();
+    if (d.kind() != 'f' || d.itemsize() != 4)
+        throw Error(ErrorKind::InvalidArgument, "out: dtype " + name_of(d) + "; the engine writes float32");
+    bool same = a.ndim() == py::ssize_t(shape.size());
+    for (std::size_t i = 0; same && i < shape.size(); ++i) same = a.shape(py::ssize_t(i)) == shape[i];
+    if (!same) throw Error(ErrorKind::Shape, "out: shape differs from the result's " + want);
+    if (!(a.flags() & py::array::c_style)) throw Error(ErrorKind::InvalidArgument, "out: not C-contiguous");
+    if (!a.writeable()) throw Error(ErrorKind::InvalidArgument, "out: read-only");
+    return py::reinterpret_borrow<py::array_t<float>>(out);
+}
+
+template <class T>
+void put(float* fused, int s, const BasicImage<T>& img) {
+    float* p = fused + std::size_t(s) * img.data.size();
+    std::transform(img.data.begin(), img.data.end(), p, [](T v) { return float(v); });
+}
+
+template void put(float*, int, const BasicImage<float>&);
+template void put(float*, int, const BasicImage<double>&);
+
 }  // namespace vkfuse::python

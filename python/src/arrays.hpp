@@ -41,4 +41,14 @@ Frames to_frame(const py::handle& array, const std::string& what);
 template <class T>
 py::array_t<float> to_array(const BasicImage<T>& img, bool gray);
 
+// Where S fused images go: float32 (S, H, W) when gray, else (S, H, W, C).
+// `out`, when not None, must be exactly that (shape, float32, C order,
+// writeable; else Error naming "out") and is filled in place; otherwise a
+// new array.
+py::array_t<float> fused_array(const py::object& out, int sensors, int height, int width, int channels, bool gray);
+// img into sensor s's slot of fused_array's data (which may be written with
+// the GIL released).
+template <class T>
+void put(float* fused, int s, const BasicImage<T>& img);
+
 }  // namespace vkfuse::python

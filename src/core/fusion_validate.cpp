@@ -2,6 +2,7 @@
 // one-line message that names the offending option (include/vkfuse/core/fusion.hpp);
 // and the shape and frame checks every plan and reference share
 // (core/validate_shape.hpp).
+#include <algorithm>
 #include <string>
 
 #include "core/check_finite.hpp"
@@ -51,6 +52,15 @@ void check_wavelet_levels(const FusionSpec& spec, int height, int width) {
 }
 
 }  // namespace
+
+int max_levels(Method method, Wavelet wavelet, int height, int width) {
+    const core::MethodInfo& m = core::method_info(method);
+    if (m.default_levels == 0) return 0;
+    if (m.uses_wavelet) return max_wavelet_levels(wavelet, height, width);
+    int levels = 1;  // pyrDown halves rounding up: the top is 1 x 1 after ceil(log2(max side)) levels
+    for (int side = std::max(height, width); side > 2 && levels < m.max_levels; side = (side + 1) / 2) ++levels;
+    return levels;
+}
 
 namespace core {
 

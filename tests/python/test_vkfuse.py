@@ -134,8 +134,8 @@ def test_bad_inputs_raise_value_error_naming_the_input():
         vkfuse.fuse([good[0], good[1][:, :32]], backend="cpu")
     with pytest.raises(ValueError, match=r"frames\[0\]: dtype int64"):
         vkfuse.fuse([np.zeros((H, W), np.int64)] * 2, backend="cpu")
-    with pytest.raises(ValueError, match="not one array"):
-        vkfuse.fuse(np.stack(good), backend="cpu")
+    with pytest.raises(ValueError, match=r"reads as one \(H, W, C\) image"):
+        vkfuse.fuse(good[0], backend="cpu")
     with pytest.raises(ValueError, match="no frames given"):
         vkfuse.fuse([], backend="cpu")
     with pytest.raises(ValueError, match="xyz"):
@@ -204,7 +204,7 @@ def test_the_simulated_digit_captures_each_setting_lit_alone():
 def test_a_rig_of_simulated_digits_yields_cycles_as_arrays_and_dicts(backend):
     rig = vkfuse.Rig(sensors=2, sequence=[(15, 15, 15), (0, 15, 0)], object="coin", backend=backend)
     assert rig.sensors == ["SIM-0001", "SIM-0002"] and rig.backend == backend
-    cycles = rig.cycles(2)
+    cycles = list(rig.cycles(2))
     assert [c["cycle"] for c in cycles] == [0, 1]
     for cycle in cycles:
         for s in cycle["sensors"]:
@@ -216,7 +216,7 @@ def test_a_rig_of_simulated_digits_yields_cycles_as_arrays_and_dicts(backend):
             expected = vkfuse.metrics(s["fused"], backend="cpu")
             assert s["metrics"]["sharpness"] == pytest.approx(expected["sharpness"], rel=1e-5)
             assert s["metrics"]["contrast"] == pytest.approx(expected["contrast"], rel=1e-5)
-    with pytest.raises(ValueError, match="sensors 0: must be from 1 to 64"):
+    with pytest.raises(ValueError, match="sensors 0: expected a positive integer"):
         vkfuse.Rig(sensors=0)
     with pytest.raises(ValueError, match="level 16"):
         vkfuse.Rig(sequence=[(16, 0, 0)])
@@ -237,8 +237,8 @@ def recorded(tmp_path_factory):
 def test_a_dataset_gives_its_frames_as_arrays(recorded):
     ds = vkfuse.Dataset(str(recorded))
     assert ds.source == "vkfuse sim" and len(ds.sensors) == 1 and ds.objects() == ["coin-heads"]
-    frames = ds.frames(ds.sensors[0], "coin-heads")
-    assert len(frames) == 8 and len(ds.frames(ds.sensors[0], "background")) == 8
+    frames = list(ds.frames(ds.sensors[0], "coin-heads"))
+    assert len(frames) == 8 and len(list(ds.frames(ds.sensors[0], "background"))) == 8
     lit = {f["illumination"]: f["pixels"] for f in frames}
     assert set(lit) == {(r, g, b) for r in (0, 15) for g in (0, 15) for b in (0, 15)}
     green = lit[(0, 15, 0)].reshape(-1, 3).mean(axis=0)
@@ -254,7 +254,7 @@ def test_a_rig_replays_a_dataset_frame_for_frame(recorded):
     ds = vkfuse.Dataset(str(recorded))
     lit = {f["illumination"]: f["pixels"] for f in ds.frames(ds.sensors[0], "coin-heads")}
     rig = vkfuse.Rig(dataset=str(recorded), object="coin-heads", sequence=[(15, 15, 15), (0, 15, 0)], backend="cpu")
-    (cycle,) = rig.cycles(1)
+    (cycle,) = list(rig.cycles(1))
     (s,) = cycle["sensors"]
     assert s["status"] == "ok"
     assert np.array_equal(s["frames"][0], lit[(15, 15, 15)]) and np.array_equal(s["frames"][1], lit[(0, 15, 0)])

@@ -1,17 +1,15 @@
 // vkfuse run: sensors cycling through an LED sequence, fused every cycle.
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include "shared_options.hpp"
 #include "commands.hpp"
-#include "memory_check.hpp"
 #include "progress.hpp"
 #include "run/run_options.hpp"
 #include "run/run_output.hpp"
 #include "run/run_publish.hpp"
-#include "run/run_sensors.hpp"
+#include "run/run_session.hpp"
 #include "run/run_stats.hpp"
 #include "staged_directory.hpp"
 #include "standard_output.hpp"
@@ -88,10 +86,8 @@ constexpr CommandSpec kSpec{
     "vkfuse run --sensors 4 --cycles 120 --virtual-clock --out out",
 };
 
-struct Session {
-    RunOptions options;
-    std::shared_ptr<const Dataset> dataset;  // with --replay
-    RunSensors sensors;
+// The rig's sources (run_session.hpp) and what this run writes.
+struct Session : RigSession {
     // Declared before what writes into them: destroyed (removed unless
     // published) after the writers have closed their files.
     std::unique_ptr<StagedDirectory> out_dir, record_dir;
@@ -115,102 +111,24 @@ void stage_outputs(Session& s, const Args& args) {
     }
 }
 
-// A replayed manifest says how large its frames are: before any buffer is
-// sized from that, the rig's memory is checked against what the process may
-// take. Per sensor, its fusion and frames are bounded like a `vkfuse fuse` of
-// K frames of that shape, plus three cycles of 8-bit frames in flight (the
-// capture, the mailbox, the last good cycle) and the background means.
-void require_replay_memory(const RunOptions& o, const std::shared_ptr<const Dataset>& recording) {
-    const Dataset& dataset = *recording;
-    const std::uint64_t K = o.sequence.size();
-    std::uint64_t need = 0;
-    for (const DatasetSensorRecord& r : dataset.sensors) {
-        io::ImageHeader frame;
-        frame.height = r.info.height;
-        frame.width = r.info.width;
-        frame.channels = 3;
-        need += fuse_memory_need(std::vector<io::ImageHeader>(K, frame), o.fusion.method, o.backend);
-        need += K * (3 * frame.samples() + frame.image_bytes());
-        // --realtime holds every frame it plays, decoded.
-        if (o.realtime)
-            need += DatasetSensor(recording, r.info.serial, o.object).frames() * frame.samples();  // 8-bit samples
-    }
-    require_memory({(std::filesystem::path(dataset.directory) / "manifest.json").string()}, "replaying", need);
-}
-
-// Real DIGITs when named or plugged in, else simulated ones. A choice made
-// without being asked for is said in one line.
-void choose_live_sensors(Session& s, const Args& args) {
-    RunOptions& o = s.options;
-    if (!o.digits.empty()) {
-        s.sensors = digit_sensors(o, o.digits);
-    } else if (const std::vector<std::string> plugged = o.simulate ? std::vector<std::string>{} : plugged_digits();
-               !plugged.empty()) {
-        s.sensors = digit_sensors(o, plugged);
-        std::string list;
-        for (const std::string& serial : plugged) list += (list.empty() ? "" : ", ") + serial;
-        std::fprintf(stderr, "vkfuse run: using the DIGIT%s plugged in: %s (--simulate to simulate instead)\n",
-                     plugged.size() > 1 ? "s" : "", list.c_str());
-    } else {
-        s.sensors = simulated_sensors(o);
-        if (!o.simulate)
-            std::fprintf(stderr, "vkfuse run: no DIGIT found; simulating %d DIGIT%s (%s)\n", o.sensors,
-                         o.sensors > 1 ? "s" : "", s.sensors.rig.front().sensor->info().serial.c_str());
-        return;
-    }
-    o.sensors = int(s.sensors.rig.size());
-    if (!args.has("--object")) o.object = "live";  // a label only: nothing tells what touches a real gel
-}
-
 Session prepare(const Args& args) {
     Session s;
     s.options = parse_run_options(args);
     stage_outputs(s, args);
-    if (s.options.source_ros2) {
-        s.sensors = remote_sensors(s.options, args);
-    } else if (s.options.replay) {
-        s.dataset = std::make_shared<const Dataset>(read_dataset(*s.options.replay));
-        adopt_recording(s.options, args, *s.dataset);
-        require_replay_memory(s.options, s.dataset);
-        s.sensors = replayed_sensors(s.options, s.dataset);
-        if (s.sensors.recorded_cycles == 0)
-            throw Error(ErrorKind::InvalidArgument, "--replay " + *s.options.replay + ": no full cycle of " +
-                                                        to_string(s.options.sequence) + " recorded for " +
-                                                        s.options.object);
-    } else {
-        choose_live_sensors(s, args);
-    }
+    open_sources(s, args);
     return s;
 }
 
 RigConfig rig_config(Session& s) {
-    const RunOptions& o = s.options;
-    RigConfig cfg;
-    cfg.fusion = o.fusion;
-    cfg.sequence = o.sequence;
-    cfg.judging = s.sensors.judging;
-    cfg.background_frames = o.background_frames;
-    cfg.cycle_timeout_s = o.timeout_s;
-    cfg.startup_timeout_s = o.startup_timeout_s;
-    cfg.fuse = !o.capture_only;
-    cfg.want_fused = o.out.has_value() || o.publish_ros2;
-    cfg.skip = o.skip;
-    cfg.metrics = o.metrics;
-    cfg.watch_when_idle = !o.record;  // a dataset holds every setting of every cycle
-    cfg.cycles_in_flight = o.cycles_in_flight;
+    RigConfig cfg = rig_config(static_cast<const RigSession&>(s));
     // The recorder is made once the rig has accepted the configuration (no
     // directory for a run that cannot start); the callback finds it then.
-    if (o.record || o.publish_frames)
+    if (s.options.record || s.options.publish_frames)
         cfg.on_background = [&rec = s.recorder, &pub = s.publisher](std::size_t i, const Illumination& setting,
                                                                   const std::vector<Frame>& frames) {
             if (rec)
                 for (const Frame& f : frames) rec->add_frame(int(i), "nothing", true, f, setting);
             if (pub) pub->publish_background(i, setting, frames);
-        };
-    if (!s.sensors.sims.empty() && o.background_frames > 0)
-        cfg.after_background = [sims = s.sensors.sims, object = o.object,
-                                pressing = std::size_t(o.pressing.value_or(o.sensors))](std::size_t i) {
-            if (i < pressing) sims[i]->set_object(object);
         };
     return cfg;
 }
@@ -239,12 +157,6 @@ void record_cycle(DatasetWriter& rec, const CycleResult& cycle, const RunOptions
         for (std::size_t k = 0; k < s.frames.size(); ++k)
             rec.add_frame(int(i), o.object, false, s.frames[k], o.sequence[k], std::int64_t(cycle.cycle));
     }
-}
-
-std::optional<int> cycle_target(const Session& s) {
-    if (s.options.cycles) return s.options.cycles;
-    if (s.sensors.recorded_cycles) return int(*s.sensors.recorded_cycles);
-    return std::nullopt;
 }
 
 bool more_to_do(const Session& s, const Rig& rig, const RunStats& stats, const StopSignal& stop) {

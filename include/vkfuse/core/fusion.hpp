@@ -51,6 +51,12 @@ int filter_length(Wavelet);
 // filter_length), the same bound for both modes.
 int max_wavelet_levels(Wavelet, int height, int width);
 
+// The deepest level count validate() accepts for the method at this size
+// (PyWavelets' level=None): max_wavelet_levels for a wavelet method, for a
+// Laplacian pyramid the levels whose top first reaches 1 x 1 (at least 1),
+// 0 for a method without levels.
+int max_levels(Method, Wavelet, int height, int width);
+
 // Checks spec against K frames of height x width x channels; throws
 // Error(InvalidArgument) with a one-line reason (e.g. "--levels 5: a 61x97
 // image carries at most 2 levels of bior4.4"). Returns nothing on success.
