@@ -7,7 +7,7 @@
 # With -DBENCH=ON, vkfuse-bench is installed too and runs from the prefix,
 # finding its peers there rather than in the source tree.
 # With -DPYTHON=<python3>, the Python module is imported from the prefix and
-# examples/fuse_pair.py runs against it. With -DROS2=ON, examples/ros2_installed
+# examples/python/fuse_pair.py runs against it. With -DROS2=ON, examples/ros2_installed
 # is built with find_package(vkfuse COMPONENTS ros2) and looks for a capture host.
 #   cmake -DBUILD=<build dir> -DSOURCE=<source dir> -DWORK=<scratch dir> -DCXX=<compiler> -DBENCH=ON|OFF
 #         -DPYTHON=<python3 or OFF> -DROS2=ON|OFF -P install_package.cmake
@@ -107,9 +107,9 @@ endif()
 # The Python module from the prefix alone (the build tree's is not on the path).
 if(PYTHON)
   set(ENV{PYTHONPATH} ${prefix}/lib/python3/dist-packages)
-  run("the installed Python module" ${PYTHON} ${SOURCE}/examples/fuse_pair.py)
+  run("the installed Python module" ${PYTHON} ${SOURCE}/examples/python/fuse_pair.py)
   message(STATUS "python: ${last_output}")
   if(NOT last_output MATCHES "agree|CPU reference only")
-    message(FATAL_ERROR "examples/fuse_pair.py said: ${last_output}")
+    message(FATAL_ERROR "examples/python/fuse_pair.py said: ${last_output}")
   endif()
 endif()

@@ -15,8 +15,10 @@ PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libgtest-dev 
 # ships), and make two hosts of one machine with (network namespaces, nftables).
 ROS2_TEST_PACKAGES=(libfastrtps-dev libfastcdr-dev nftables iproute2)
 
-# What the Python module's tests need: pytest and the peers it is checked against.
-PYTHON_TEST_PACKAGES=(python3-pytest python3-numpy python3-pywt python3-opencv)
+# What the Python module's tests need: pytest, the peers it is checked against,
+# PyTorch (tensors in and out), mypy (the type stubs) and pip in a venv (`pip install .`).
+PYTHON_TEST_PACKAGES=(python3-pytest python3-numpy python3-pywt python3-opencv python3-torch python3-mypy
+                      python3-venv python3-pip python3-setuptools python3-wheel libdlpack-dev)
 
 # What the hardware-in-the-loop test needs (ctest -L hil, tests/hil): QEMU to
 # boot Debian's kernel with emulated DIGITs, busybox for its initramfs,

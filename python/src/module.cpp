@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "device_tensor.hpp"
 #include "rig.hpp"
 #include "sensors.hpp"
 #include "shared.hpp"
@@ -77,6 +78,7 @@ PYBIND11_MODULE(_vkfuse, m) {
 
     def_fusion(m);
     def_plan(m);
+    def_device_tensor(m);
     def_sensors(m);
     def_rig(m);
 }

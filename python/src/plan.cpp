@@ -13,10 +13,12 @@
 #include <optional>
 
 #include "arrays.hpp"
+#include "device_tensor.hpp"
 #include "shared.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/reference.hpp"
 #include "vkfuse/rig/rig.hpp"
+#include "vkfuse/vk/interop.hpp"
 #include "vkfuse/vk/plan.hpp"
 
 namespace vkfuse::python {
@@ -31,7 +33,7 @@ public:
     PyPlan(int height, int width, int channels, int frames, int sensors, const std::string& dtype,
            const std::string& method, const std::string& wavelet, const std::optional<int>& levels,
            const std::string& mode, const std::string& base_rule, const std::string& detail_rule,
-           const std::vector<std::string>& metrics, const std::string& backend) {
+           const std::vector<std::string>& metrics, const std::string& backend, bool on_device) {
         config_.fusion = spec_of(method, wavelet, levels, mode, base_rule, detail_rule);
         config_.height = height, config_.width = width, config_.channels = channels, config_.frames = frames;
         if (sensors < 1 || std::size_t(sensors) > kMaxRigSensors)
@@ -44,7 +46,17 @@ public:
         config_.metrics = metric_set(metrics);
         validate(config_.fusion, height, width, channels, frames);
         context_ = open_backend(backend);
-        if (context_) plan_.emplace(*context_, config_);
+        if (on_device) {
+            if (!context_) throw Error(ErrorKind::InvalidArgument, "on_device: needs the Vulkan backend; this plan is cpu");
+            shape_ = {sensors, height, width};
+            if (channels != 1) shape_.push_back(channels);
+            const std::size_t bytes = std::size_t(sensors) * std::size_t(height) * std::size_t(width) *
+                                      std::size_t(channels) * sizeof(float);
+            device_memory_ = DeviceTensor::exportable(*context_, bytes);
+            plan_.emplace(make_plan(*context_, config_, {{}, device_memory_->range()}));
+        } else if (context_) {
+            plan_.emplace(*context_, config_);
+        }
         backgrounds_.resize(std::size_t(sensors));
     }
 
@@ -71,12 +83,23 @@ public:
                                                         " given; the plan fuses " + std::to_string(config_.frames) +
                                                         " for each of " + std::to_string(config_.sensors) + " sensor(s)");
         check(frames, "frames[0]");
+        const int S = config_.sensors;
+        std::vector<Metrics> m(static_cast<std::size_t>(S));
+        if (device_memory_) {
+            if (!out.is_none()) throw Error(ErrorKind::InvalidArgument, "out: the plan keeps its images on the device");
+            const std::unique_lock turn = take_turn();
+            const std::vector<FrameView> views = frames.views();
+            {
+                py::gil_scoped_release unlocked;
+                plan_->run(views);
+                for (int s = 0; s < S && !config_.metrics.empty(); ++s) m[std::size_t(s)] = plan_->metrics(s);
+            }
+            return py::make_tuple(DeviceTensor(device_memory_, shape_), scores_of(m));
+        }
         py::array_t<float> fused = fused_array(out, config_.sensors, config_.height, config_.width,
                                                config_.channels, frames.gray);
         float* const into = fused.mutable_data();
         const std::unique_lock turn = take_turn();
-        const int S = config_.sensors;
-        std::vector<Metrics> m(static_cast<std::size_t>(S));
         if (plan_) {
             const std::vector<FrameView> views = frames.views();
             py::gil_scoped_release unlocked;
@@ -101,9 +124,7 @@ public:
                 put(into, s, f);
             }
         }
-        py::list scores;
-        for (const Metrics& one : m) scores.append(to_dict(one, config_.metrics));
-        return py::make_tuple(fused, scores);
+        return py::make_tuple(fused, scores_of(m));
     }
 
     std::string backend() const { return plan_ ? "vulkan" : "cpu"; }
@@ -135,6 +156,12 @@ public:
     }
 
 private:
+    py::list scores_of(const std::vector<Metrics>& m) const {
+        py::list scores;
+        for (const Metrics& one : m) scores.append(to_dict(one, config_.metrics));
+        return scores;
+    }
+
     // This thread's turn with the plan, waited for without the GIL.
     std::unique_lock<std::mutex> take_turn() {
         std::unique_lock lock(mutex_, std::try_to_lock);
@@ -158,6 +185,9 @@ private:
     PlanConfig config_;
     Context* context_ = nullptr;
     std::optional<Plan> plan_;
+    // on_device: the fused images stay here (DeviceTensor), shaped shape_.
+    std::shared_ptr<DeviceMemory> device_memory_;
+    std::vector<std::int64_t> shape_;
     std::vector<std::optional<ImageD>> backgrounds_;  // the CPU path's, per sensor
     std::mutex mutex_;                                // whose turn it is
 };
@@ -168,12 +198,13 @@ void def_plan(py::module_& m) {
     py::class_<PyPlan>(m, "Plan", "Built once for a shape, K, S and method; run() every cycle.")
         .def(py::init<int, int, int, int, int, const std::string&, const std::string&, const std::string&,
                       const std::optional<int>&, const std::string&, const std::string&, const std::string&,
-                      const std::vector<std::string>&, const std::string&>(),
+                      const std::vector<std::string>&, const std::string&, bool>(),
              py::arg("height"), py::arg("width"), py::arg("channels") = 3, py::arg("frames") = 2,
              py::arg("sensors") = 1, py::arg("dtype") = "uint8", py::arg("method") = "wavelet",
              py::arg("wavelet") = "bior4.4", py::arg("levels") = py::none(), py::arg("mode") = "periodization",
              py::arg("base_rule") = "mean", py::arg("detail_rule") = "max-abs",
-             py::arg("metrics") = std::vector<std::string>{"sharpness", "contrast"}, py::arg("backend") = "auto")
+             py::arg("metrics") = std::vector<std::string>{"sharpness", "contrast"}, py::arg("backend") = "auto",
+             py::arg("on_device") = false)
         .def("set_background", &PyPlan::set_background, py::arg("background"), py::arg("sensor") = 0)
         .def("run", &PyPlan::run, py::arg("frames"), py::arg("out") = py::none(),
              "Fuses one cycle's S x K frames (sensor-major): (float32 (S, H, W[, C]), [metrics per sensor]).")

@@ -20,9 +20,9 @@ The rig of `vkfuse run`:
 Bad arguments raise ValueError or TypeError naming the argument; anything
 else the library refuses raises vkfuse.Error.
 """
-from ._vkfuse import Error, SimDigit, __version__
+from ._vkfuse import DeviceTensor, Error, SimDigit, __version__
 from ._fusion import fuse, metrics
 from ._plan import Plan
 from ._rig import Dataset, Rig
 
-__all__ = ["Dataset", "Error", "Plan", "Rig", "SimDigit", "__version__", "fuse", "metrics"]
+__all__ = ["Dataset", "DeviceTensor", "Error", "Plan", "Rig", "SimDigit", "__version__", "fuse", "metrics"]

@@ -36,7 +36,7 @@ class Layout:
     layout: str = "landscape"
 
     @staticmethod
-    def of(channel_order: Any, layout: Any) -> "Layout":
+    def of(channel_order: Any = "rgb", layout: Any = "landscape") -> "Layout":
         if channel_order not in CHANNEL_ORDERS:
             raise ValueError(f"channel_order {channel_order!r}: expected 'rgb' or 'bgr'")
         if layout not in LAYOUTS:

@@ -1,7 +1,7 @@
 """vkfuse.fuse() and vkfuse.metrics(): one call, any backend."""
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Union
+from typing import Any, Optional
 
 from . import _vkfuse
 from ._arrays import Layout, as_array, engine_frames, engine_out, finish
@@ -64,13 +64,14 @@ def fuse(frames: Any, method: str = "wavelet", wavelet: Any = "bior4.4", levels:
 
 
 def metrics(image: Any, background: Any = None, backend: str = "auto", *, channel_order: str = "rgb",
-            layout: str = "landscape") -> Union[Dict[str, float], List[Dict[str, float]]]:
+            layout: str = "landscape") -> Any:
     """Sharpness, RMS contrast and, with a background, the mean absolute
     difference from it (docs/spec.md, "Metrics").
 
     image: one (H, W) or (H, W, C) image (dtypes as fuse() takes them), or a
         list / stacked (N, H, W, C) array of them: a list of dicts then.
     background: an image of the same shape and dtype, or None.
+    backend: as fuse().
     channel_order, layout: as fuse(); the numbers do not depend on them
         (images are scored as the sensor's landscape RGB).
     """

@@ -1,13 +1,16 @@
 """vkfuse.Plan: built once for a shape, K, S and method; run every cycle."""
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, List, Optional, Sequence, Tuple
+
+import numpy as np
 
 from . import _vkfuse
 from ._arrays import Layout, engine_frames, engine_out, finish
 from ._conventions import INPUT_DTYPES, UNSET, dtype_name, spec_kwargs
 
-Scores = Union[Dict[str, float], List[Dict[str, float]]]
+# A dict of metrics, or for a batch a list of them (one per sensor).
+Scores = Any
 
 
 class Plan:
@@ -25,6 +28,10 @@ class Plan:
     metrics: the metrics each run() returns: sharpness, contrast,
         background_diff (needs set_background()); () for none.
     sensors: S, the sensors one run() fuses in one submit.
+    on_device: run() leaves the fused images in device memory that can be
+        shared and returns a vkfuse.DeviceTensor (DLPack on kDLVulkan, an
+        opaque fd for CUDA or another process; README, "Python"); needs the
+        Vulkan backend and the engine's own layout (landscape RGB float32).
 
     A Plan is one thread's at a time: run() from two threads at once is
     serialised (each waits its turn with the GIL released); different
@@ -36,7 +43,7 @@ class Plan:
                  mode: str = "periodization", base_rule: str = "mean", detail_rule: str = "max-abs",
                  metrics: Sequence[str] = ("sharpness", "contrast"), backend: str = "auto", *, sensors: int = 1,
                  level: Any = UNSET, channel_order: str = "rgb", layout: str = "landscape", out_dtype: Any = None,
-                 clamp: Optional[bool] = None) -> None:
+                 clamp: Optional[bool] = None, on_device: bool = False) -> None:
         for name, value in (("height", height), ("width", width), ("channels", channels), ("frames", frames),
                             ("sensors", sensors)):
             if isinstance(value, bool) or not isinstance(value, int):
@@ -50,8 +57,12 @@ class Plan:
         h, w = self._layout.engine_size(height, width)
         spec = spec_kwargs(method, wavelet, levels, level, mode, base_rule, detail_rule, h, w)
         engine_dtype = "uint8" if self._dtype == "uint8" else "float32"
+        if on_device and (self._layout != Layout() or out_dtype not in (None, "float32", np.float32) or clamp):
+            raise ValueError("on_device: the images stay as the engine writes them: landscape RGB float32, "
+                             "unclamped (no channel_order, layout, out_dtype or clamp)")
+        self._on_device = bool(on_device)
         self._plan = _vkfuse.Plan(h, w, channels, frames, sensors=sensors, dtype=engine_dtype,
-                                  metrics=list(metrics), backend=backend, **spec)
+                                  metrics=list(metrics), backend=backend, on_device=self._on_device, **spec)
 
     @property
     def backend(self) -> str:
@@ -86,6 +97,9 @@ class Plan:
         (S, H, W[, C]) and the metrics a list of dicts, one per sensor. out,
         like: as vkfuse.fuse(). Releases the GIL while the plan runs."""
         given, engine = self._engine(frames)
+        if self._on_device:
+            tensor, scores = self._plan.run(engine, out=out)
+            return tensor, (scores if given.batched else scores[0])
         shape = (self.sensors,) + engine[0].shape
         direct = engine_out(out, given, self._layout, self._out_dtype, self._clamp, shape)
         fused, scores = self._plan.run(engine, out=direct)

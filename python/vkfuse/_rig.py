@@ -10,7 +10,7 @@ one table.
 from __future__ import annotations
 
 import inspect
-from typing import Any, Dict, Iterator, List, Optional
+from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from . import _vkfuse
 from ._arrays import Layout
@@ -28,7 +28,7 @@ _CONVERT = {"mode": mode_name, "wavelet": wavelet_name,
             "base_rule": lambda r: rule_name(r, "base_rule"), "detail_rule": lambda r: rule_name(r, "detail_rule")}
 
 
-def _options() -> Dict[str, tuple]:
+def _options() -> Dict[str, Tuple[str, str, str]]:
     """Python name -> (option, value name, help) for each option a Python rig takes."""
     out = {}
     for option, value, help_text in _vkfuse.run_options:

@@ -4,7 +4,7 @@ white (15,15,15) and green (0,15,0), the paper's best pair, with its best
 method (wavelet, bior4.4, 3 levels); prints the metrics and whether the
 device's image agrees with the CPU reference.
 
-    PYTHONPATH=P/lib/python3/dist-packages python3 examples/fuse_pair.py
+    PYTHONPATH=P/lib/python3/dist-packages python3 examples/python/fuse_pair.py
 """
 import numpy as np
 

@@ -1,0 +1,43 @@
+// device_tensor.hpp - a plan's fused images in shareable device memory, for
+// Python (vkfuse.DeviceTensor; device_tensor.cpp says how it is shared).
+#pragma once
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "shared.hpp"
+#include "vkfuse/vk/interop.hpp"
+
+namespace vkfuse::python {
+
+class DeviceTensor {
+public:
+    // float32 images of `shape` (C order) at the start of memory.
+    DeviceTensor(std::shared_ptr<DeviceMemory> memory, std::vector<std::int64_t> shape);
+
+    // Memory for bytes another device or process can import. Throws
+    // Error(Device) naming "on_device" where the device cannot export.
+    static std::shared_ptr<DeviceMemory> exportable(Context& context, std::size_t bytes);
+    // Another process's export_fd() (fd stays the caller's). Throws Error
+    // for a shape that does not fit allocation_size or an fd Vulkan refuses.
+    static DeviceTensor import_fd(Context& context, int fd, std::uint64_t allocation_size,
+                                  std::vector<std::int64_t> shape);
+
+    const std::vector<std::int64_t>& shape() const { return shape_; }
+    std::size_t bytes() const;
+    std::uint64_t allocation_size() const;
+    int export_fd() const;
+    py::capsule dlpack() const;
+    py::array_t<float> numpy() const;
+
+private:
+    std::shared_ptr<DeviceMemory> memory_;
+    std::vector<std::int64_t> shape_;
+};
+
+void def_device_tensor(py::module_& m);
+
+}  // namespace vkfuse::python
