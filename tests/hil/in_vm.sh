@@ -49,6 +49,11 @@ vkfuse run --backend cpu --cycles 20 --background-frames 2 --method brovey --sen
 sed 's/^/hil: vkfuse run: /' /tmp/run.err | head -3
 echo "hil: vkfuse run: $(cut -c1-160 /tmp/run.json)"
 grep -q '"fused": 20' /tmp/run.json || failed=1
+# The same unit from Python (vkfuse.Rig), where run_hil.sh bundled it.
+if [ -x /usr/bin/python3 ]; then
+    PYTHONPATH=/hil/python /usr/bin/python3 /hil/rig_from_python.py D20001 >/tmp/python.log 2>&1 || { failed=1; echo "hil: python: failed"; }
+    tail -4 /tmp/python.log | sed 's/^\([^h]\)/hil: python: \1/'
+fi
 
 unit_under_test D10001 1.00 D20001
 export VKFUSE_HIL_CORRUPT_EVERY=5

@@ -4,14 +4,17 @@
 # emulated DIGIT and the DIGIT tests, runs tests/hil/in_vm.sh inside and exits
 # with its status.
 #
-#   run_hil.sh CACHE_DIR EMULATOR HIL_TESTS VKFUSE
+#   run_hil.sh CACHE_DIR EMULATOR HIL_TESTS VKFUSE [PYTHON_DIR]
 #
+# PYTHON_DIR (the build's python/, holding the vkfuse package): the guest
+# also gets this host's python3, its standard library and numpy, and drives
+# the emulated DIGIT from Python once (tests/hil/rig_from_python.py).
 # The kernel package is downloaded once into CACHE_DIR (apt-get download:
 # never installed as this machine's kernel). It is bookworm-backports' 6.12
 # (Debian 12's 6.1 carries vhci_hcd too; 6.12 is what the emulator was
 # developed against). QEMU runs without KVM (TCG).
 set -euo pipefail
-cache=$1 emulator=$2 tests=$3 vkfuse=$4
+cache=$1 emulator=$2 tests=$3 vkfuse=$4 python_dir=${5:-}
 here=$(cd "$(dirname "$0")" && pwd)
 start=$SECONDS
 phase() { printf 'hil: %-34s %4d s\n' "$1" $((SECONDS - start)); }
@@ -77,6 +80,34 @@ for b in "$emulator" "$tests" "$vkfuse" "$(command -v v4l2-compliance || true)" 
     done
 done
 cp "$here/in_vm.sh" "$root/hil/in_vm.sh"
+# Each shared object's libraries, at their own paths in the guest.
+copy_libraries() {
+    ldd "$1" 2>/dev/null | awk '/=> \// {print $3} /^[ \t]*\/lib/ {print $1}' | while read -r lib; do
+        [ -e "$root$lib" ] && continue
+        mkdir -p "$root$(dirname "$lib")"
+        cp -L "$lib" "$root$lib"
+    done
+}
+if [ -n "$python_dir" ]; then
+    python=$(readlink -f /usr/bin/python3)
+    stdlib=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_paths()["stdlib"])')
+    numpy=$(/usr/bin/python3 -c 'import numpy, os; print(os.path.dirname(numpy.__file__))')
+    mkdir -p "$root/usr/bin" "$root$(dirname "$numpy")" "$root/hil/python"
+    cp "$python" "$root/usr/bin/python3"
+    copy_libraries "$python"
+    # The standard library without its tests and tools (cp -a keeps the
+    # byte-code caches valid), numpy without its tests, and the vkfuse package.
+    mkdir -p "$root$(dirname "$stdlib")"
+    (cd "$(dirname "$stdlib")" && tar -cf - --exclude=test --exclude=tests --exclude=idlelib --exclude=tkinter \
+        --exclude=ensurepip --exclude=lib2to3 --exclude=pydoc_data --exclude='config-*' "$(basename "$stdlib")") |
+        (cd "$root$(dirname "$stdlib")" && tar -xf -)
+    (cd "$(dirname "$numpy")" && tar -cf - --exclude=tests numpy) | (cd "$root$(dirname "$numpy")" && tar -xf -)
+    cp -a "$python_dir/vkfuse" "$root/hil/python/"
+    find "$root$stdlib/lib-dynload" "$root$numpy" "$root/hil/python" -name '*.so' | while read -r so; do
+        copy_libraries "$so"
+    done
+    cp "$here/rig_from_python.py" "$root/hil/"
+fi
 cat >"$root/init" <<'INIT'
 #!/bin/busybox sh
 /bin/busybox --install -s /bin
