@@ -17,6 +17,7 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "arrays.hpp"
@@ -53,6 +54,16 @@ DeviceTensor DeviceTensor::import_fd(Context& context, int fd, std::uint64_t all
         bytes *= std::uint64_t(d);
     }
     DeviceTensor t(nullptr, std::move(shape));
+    // An opaque fd is the exporting driver's; what it is cannot be checked,
+    // but a pipe, socket or directory is never one (a driver handed a pipe
+    // may wait on it forever), nor a file shorter than the memory.
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throw Error(ErrorKind::InvalidArgument, "fd " + std::to_string(fd) + ": not open");
+    if (S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode) || S_ISDIR(st.st_mode))
+        throw Error(ErrorKind::InvalidArgument, "fd " + std::to_string(fd) + ": a pipe, socket or directory, not exported memory");
+    if (S_ISREG(st.st_mode) && std::uint64_t(st.st_size) < allocation_size)
+        throw Error(ErrorKind::InvalidArgument, "fd " + std::to_string(fd) + ": " + std::to_string(st.st_size) +
+                                                    " bytes, less than allocation_size " + std::to_string(allocation_size));
     // Vulkan takes the fd on success only: a duplicate is given, so the
     // caller's fd stays the caller's either way.
     const int mine = ::dup(fd);

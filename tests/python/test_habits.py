@@ -338,6 +338,15 @@ def test_fused_images_stay_on_the_device_as_a_dlpack_tensor_and_an_fd():
     assert np.array_equal(imported.numpy()[0], want)
     with pytest.raises(ValueError, match="do not fit allocation_size"):
         vkfuse.DeviceTensor.import_fd(0, 16, (1, H, W, 3))
+    r, w = os.pipe()  # hostile fds are refused, never handed to the driver (one that waits on a pipe hangs)
+    try:
+        with pytest.raises(ValueError, match="a pipe, socket or directory"):
+            vkfuse.DeviceTensor.import_fd(r, 1 << 20, (1, H, W, 3))
+    finally:
+        os.close(r), os.close(w)
+    with open(__file__, "rb") as f:
+        with pytest.raises(ValueError, match="less than allocation_size"):
+            vkfuse.DeviceTensor.import_fd(f.fileno(), 1 << 30, (1, H, W, 3))
     with pytest.raises(ValueError, match="on_device: the images stay as the engine writes them"):
         vkfuse.Plan(H, W, on_device=True, layout="digit-interface")
     with pytest.raises(ValueError, match="on_device: needs the Vulkan backend"):
