@@ -1,6 +1,7 @@
 """Builds the Python module with CMake for `pip install .` (pyproject.toml):
 the compiled vkfuse._vkfuse from this tree's CMake project (the library is
 linked in statically), the pure-Python package from python/vkfuse."""
+import atexit
 import os
 import re
 import shutil
@@ -21,7 +22,10 @@ def version():
 
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
-        build = os.environ.get("VKFUSE_BUILD_DIR") or tempfile.mkdtemp(prefix="vkfuse-pip-")
+        kept = os.environ.get("VKFUSE_BUILD_DIR")
+        build = kept or tempfile.mkdtemp(prefix="vkfuse-pip-")
+        if not kept:
+            atexit.register(shutil.rmtree, build, True)
         if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
             subprocess.run(["cmake", "-S", ROOT, "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DVKFUSE_BUILD_TESTS=OFF",
                             "-DVKFUSE_BUILD_BENCH=OFF", "-DVKFUSE_HIL=OFF", "-DVKFUSE_PYTHON=ON",
@@ -40,6 +44,7 @@ class CMakeBuild(build_ext):
 # setuptools' own files (build/, *.egg-info) go to a scratch directory, not
 # into the source tree, whose build/ is CMake's.
 SCRATCH = tempfile.mkdtemp(prefix="vkfuse-setuptools-")
+atexit.register(shutil.rmtree, SCRATCH, True)
 
 setup(
     version=version(),
