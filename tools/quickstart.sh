@@ -20,6 +20,10 @@ ROS2_TEST_PACKAGES=(libfastrtps-dev libfastcdr-dev nftables iproute2)
 PYTHON_TEST_PACKAGES=(python3-pytest python3-numpy python3-pywt python3-opencv python3-torch python3-mypy
                       python3-venv python3-pip python3-setuptools python3-wheel libdlpack-dev)
 
+# What reads vkfuse's MCAP files back in the tests (tests/mcap: @mcap/core from
+# npm). Node's npm comes with it from NodeSource, from Debian as its own package.
+NODE_TEST_PACKAGES=(nodejs)
+
 # What the hardware-in-the-loop test needs (ctest -L hil, tests/hil): QEMU to
 # boot Debian's kernel with emulated DIGITs, busybox for its initramfs,
 # v4l2-compliance. VKFUSE_HIL=0 leaves the test (and these) out.
@@ -98,7 +102,9 @@ run_tests() {
 
 case "${1:-}" in
     run) install_missing "${PACKAGES[@]}"; lavapipe_from_backports; build vkfuse_cli; run_main_job ;;
-    test) install_missing "${PACKAGES[@]}" "${PYTHON_TEST_PACKAGES[@]}" "${ROS2_TEST_PACKAGES[@]}" "${HIL_PACKAGES[@]}"
+    test) install_missing "${PACKAGES[@]}" "${PYTHON_TEST_PACKAGES[@]}" "${ROS2_TEST_PACKAGES[@]}" "${HIL_PACKAGES[@]}" \
+              "${NODE_TEST_PACKAGES[@]}"
+          command -v npm >/dev/null || install_missing npm
           lavapipe_from_backports
           build; run_tests ;;
     bench) install_missing "${PACKAGES[@]}" "${PEER_PACKAGES[@]}"; lavapipe_from_backports; build vkfuse-bench
