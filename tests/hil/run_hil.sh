@@ -71,16 +71,7 @@ for m in usb_common usbcore usbip_core vhci_hcd mc videobuf2_common videodev vid
     done
     loaded="$loaded$m "
 done
-for b in "$emulator" "$tests" "$vkfuse" "$(command -v v4l2-compliance || true)" "$(command -v v4l2-ctl || true)"; do
-    [ -n "$b" ] || continue
-    cp "$b" "$root/hil/"
-    ldd "$b" | awk '/=> \// {print $3} /^[ \t]*\/lib/ {print $1}' | while read -r lib; do
-        mkdir -p "$root$(dirname "$lib")"
-        cp -L "$lib" "$root$lib"
-    done
-done
-cp "$here/in_vm.sh" "$root/hil/in_vm.sh"
-# Each shared object's libraries, at their own paths in the guest.
+# Each program's or shared object's libraries, at their own paths in the guest.
 copy_libraries() {
     ldd "$1" 2>/dev/null | awk '/=> \// {print $3} /^[ \t]*\/lib/ {print $1}' | while read -r lib; do
         [ -e "$root$lib" ] && continue
@@ -88,6 +79,12 @@ copy_libraries() {
         cp -L "$lib" "$root$lib"
     done
 }
+for b in "$emulator" "$tests" "$vkfuse" "$(command -v v4l2-compliance || true)" "$(command -v v4l2-ctl || true)"; do
+    [ -n "$b" ] || continue
+    cp "$b" "$root/hil/"
+    copy_libraries "$b"
+done
+cp "$here/in_vm.sh" "$root/hil/in_vm.sh"
 if [ -n "$python_dir" ]; then
     python=$(readlink -f /usr/bin/python3)
     stdlib=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_paths()["stdlib"])')
