@@ -5,7 +5,6 @@ line's numbers (vkfuse fuse on the same frames as PNG files) or against the
 plain call it must equal, on both backends."""
 import os
 import subprocess
-import threading
 import warnings
 
 import numpy as np
@@ -13,6 +12,7 @@ import pytest
 
 import vkfuse
 from vkfuse import _arrays
+from concurrency import in_threads  # tests/python/concurrency.py
 from device import needs_vulkan  # tests/python/device.py
 
 H, W = 96, 128
@@ -251,11 +251,7 @@ def test_one_plan_from_many_threads_is_serialised():
         for _ in range(3):
             got[i] = plan.run(inputs[i])[0]
 
-    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(inputs))]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
+    in_threads(len(inputs), work)
     for g, w in zip(got, want):
         assert np.array_equal(g, w)
 

@@ -16,6 +16,7 @@ import vkfuse
 
 sys.path.insert(0, os.environ.get("VKFUSE_PEERS", os.path.join(os.path.dirname(__file__), "../../bench/peers")))
 import pipelines  # noqa: E402  (the peers)
+from concurrency import in_threads  # noqa: E402  (tests/python/concurrency.py)
 from device import needs_vulkan  # noqa: E402  (tests/python/device.py)
 
 H, W = 96, 128
@@ -277,10 +278,6 @@ def test_fuse_reuses_its_plans_without_mixing_them_up():
     def work(i):
         results[i] = vkfuse.fuse(pairs[i], backend="vulkan")
 
-    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(pairs))]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
+    in_threads(len(pairs), work)
     for got, want in zip(results, expected):
         assert np.array_equal(got, want)
