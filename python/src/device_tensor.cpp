@@ -34,11 +34,13 @@ std::size_t DeviceTensor::bytes() const {
     return n;
 }
 
-std::shared_ptr<DeviceMemory> DeviceTensor::exportable(Context& context, std::size_t bytes) {
+DeviceTensor DeviceTensor::exportable(Context& context, std::vector<std::int64_t> shape) {
     if (!context.device().external_memory_fd)
         throw Error(ErrorKind::Device, "on_device: " + context.device().name +
                                            " cannot share memory (no VK_KHR_external_memory_fd)");
-    return std::make_shared<DeviceMemory>(DeviceMemory::allocate_exportable(context, bytes));
+    DeviceTensor t(nullptr, std::move(shape));
+    t.memory_ = std::make_shared<DeviceMemory>(DeviceMemory::allocate_exportable(context, t.bytes()));
+    return t;
 }
 
 DeviceTensor DeviceTensor::import_fd(Context& context, int fd, std::uint64_t allocation_size,
@@ -114,7 +116,7 @@ py::capsule DeviceTensor::dlpack() const {
     // For kDLVulkan, DLPack's data is opaque: here the VkBuffer handle, the
     // image starting byte_offset bytes into it (a consumer on the same
     // VkDevice binds it; any other imports export_fd()).
-    const BufferRange range = memory_->range();
+    const BufferRange range = this->range();
     t.data = reinterpret_cast<void*>(std::uintptr_t(range.buffer));
     t.byte_offset = range.offset;
     t.device = {kDLVulkan, 0};
@@ -145,7 +147,7 @@ void def_device_tensor(py::module_& m) {
         .def_static(
             "import_fd",
             [](int fd, std::uint64_t allocation_size, const std::vector<std::int64_t>& shape) {
-                Context* context = open_backend("vulkan");
+                Context* context = open_backend(Backend::Vulkan);
                 return DeviceTensor::import_fd(*context, fd, allocation_size, shape);
             },
             py::arg("fd"), py::arg("allocation_size"), py::arg("shape"),

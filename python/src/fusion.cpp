@@ -85,10 +85,14 @@ void with_plan(const PlanConfig& c, Use&& use) {
 Context* open_backend(const std::string& backend) {
     const std::optional<Backend> choice = parse_backend(backend);
     if (!choice) throw Error(ErrorKind::InvalidArgument, "backend " + backend + ": expected cpu, vulkan or auto");
-    if (*choice == Backend::Cpu) return nullptr;
+    return open_backend(*choice);
+}
+
+Context* open_backend(Backend choice) {
+    if (choice == Backend::Cpu) return nullptr;
     std::optional<Context>& context = process_device().context;
     // No device: asked again, so `vulkan` raises the library's own message.
-    if (!context && *choice == Backend::Vulkan) vkfuse::open_backend(Backend::Vulkan, "backend");
+    if (!context && choice == Backend::Vulkan) vkfuse::open_backend(Backend::Vulkan, "backend");
     return context ? &*context : nullptr;
 }
 

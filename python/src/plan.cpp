@@ -48,12 +48,10 @@ public:
         context_ = open_backend(backend);
         if (on_device) {
             if (!context_) throw Error(ErrorKind::InvalidArgument, "on_device: needs the Vulkan backend; this plan is cpu");
-            shape_ = {sensors, height, width};
-            if (channels != 1) shape_.push_back(channels);
-            const std::size_t bytes = std::size_t(sensors) * std::size_t(height) * std::size_t(width) *
-                                      std::size_t(channels) * sizeof(float);
-            device_memory_ = DeviceTensor::exportable(*context_, bytes);
-            plan_.emplace(make_plan(*context_, config_, {{}, device_memory_->range()}));
+            std::vector<std::int64_t> shape = {sensors, height, width};
+            if (channels != 1) shape.push_back(channels);
+            on_device_.emplace(DeviceTensor::exportable(*context_, std::move(shape)));
+            plan_.emplace(make_plan(*context_, config_, {{}, on_device_->range()}));
         } else if (context_) {
             plan_.emplace(*context_, config_);
         }
@@ -85,7 +83,7 @@ public:
         check(frames, "frames[0]");
         const int S = config_.sensors;
         std::vector<Metrics> m(static_cast<std::size_t>(S));
-        if (device_memory_) {
+        if (on_device_) {
             if (!out.is_none()) throw Error(ErrorKind::InvalidArgument, "out: the plan keeps its images on the device");
             const std::unique_lock turn = take_turn();
             const std::vector<FrameView> views = frames.views();
@@ -94,7 +92,7 @@ public:
                 plan_->run(views);
                 for (int s = 0; s < S && !config_.metrics.empty(); ++s) m[std::size_t(s)] = plan_->metrics(s);
             }
-            return py::make_tuple(DeviceTensor(device_memory_, shape_), scores_of(m));
+            return py::make_tuple(*on_device_, scores_of(m));
         }
         py::array_t<float> fused = fused_array(out, config_.sensors, config_.height, config_.width,
                                                config_.channels, frames.gray);
@@ -184,10 +182,10 @@ private:
 
     PlanConfig config_;
     Context* context_ = nullptr;
+    // on_device: where the fused images stay (each run() returns it, sharing
+    // the memory). Declared before plan_: the plan's buffers outlive the plan.
+    std::optional<DeviceTensor> on_device_;
     std::optional<Plan> plan_;
-    // on_device: the fused images stay here (DeviceTensor), shaped shape_.
-    std::shared_ptr<DeviceMemory> device_memory_;
-    std::vector<std::int64_t> shape_;
     std::vector<std::optional<ImageD>> backgrounds_;  // the CPU path's, per sensor
     std::mutex mutex_;                                // whose turn it is
 };

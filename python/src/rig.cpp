@@ -104,7 +104,7 @@ public:
         session_.options = cli::parse_run_options(args);
         cli::open_sources(session_, args);
         const cli::RunOptions& o = session_.options;
-        Context* context = o.capture_only ? nullptr : open_backend(std::string(to_string(o.backend)));
+        Context* context = o.capture_only ? nullptr : open_backend(o.backend);
         backend_ = o.capture_only ? "none" : context ? "vulkan" : "cpu";
         RigConfig config = cli::rig_config(session_);
         config.want_fused = !o.capture_only;

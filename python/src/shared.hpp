@@ -18,6 +18,8 @@ namespace py = pybind11;
 // The context `backend` ("auto", "vulkan", "cpu") asks for, or nullptr for
 // the CPU reference path: one Vulkan context per process, opened on first use.
 Context* open_backend(const std::string& backend);
+// As above, for a choice already parsed (vkfuse.Rig's, from run's options).
+Context* open_backend(Backend choice);
 
 FusionSpec spec_of(const std::string& method, const std::string& wavelet, const std::optional<int>& levels,
                    const std::string& mode, const std::string& base_rule, const std::string& detail_rule);
