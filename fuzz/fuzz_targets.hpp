@@ -1,6 +1,6 @@
 // fuzz_targets.hpp - the fuzzed entry points. Each fuzz_*.cpp defines one;
 // under libFuzzer (VKFUSE_LIBFUZZER) it also defines LLVMFuzzerTestOneInput
-// calling it, and in the normal build replay_test.cpp calls all three on
+// calling it, and in the normal build replay_test.cpp calls each on
 // every committed corpus and regression input.
 #pragma once
 #include <cstddef>
@@ -16,6 +16,7 @@ namespace vkfuse::fuzz {
 int png(const std::uint8_t* data, std::size_t size);
 int npy(const std::uint8_t* data, std::size_t size);
 int args(const std::uint8_t* data, std::size_t size);
+int mcap(const std::uint8_t* data, std::size_t size);
 
 // A contract violation: say which, then abort so libFuzzer keeps the input.
 [[noreturn]] inline void violated(const char* what, const char* detail) {

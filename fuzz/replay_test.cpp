@@ -99,6 +99,7 @@ TEST(FuzzReplay, NpyDecoderAgreesWithTheFileReader) {
 TEST(FuzzReplay, Png) { EXPECT_GE(replay("png", png), 5u); }
 TEST(FuzzReplay, Npy) { EXPECT_GE(replay("npy", npy), 5u); }
 TEST(FuzzReplay, Args) { EXPECT_GE(replay("args", args), 5u); }
+TEST(FuzzReplay, Mcap) { EXPECT_GE(replay("mcap", mcap), 3u); }
 
 }  // namespace
 }  // namespace vkfuse::fuzz

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "dataset_frames.hpp"
 #include "expect_error.hpp"
 #include "sensor_doubles.hpp"
 #include "temp_dir.hpp"
@@ -12,20 +13,6 @@
 
 namespace vkfuse::test {
 namespace {
-
-SensorInfo small_sensor(const std::string& serial) { return {"test", serial, 6, 4, 60.0, LedLayout::digit()}; }
-
-Frame pattern_frame(std::uint64_t index, int seed) {
-    Frame f;
-    f.index = index;
-    f.timestamp = 0.1 + double(index) / 60.0;  // not exact in binary: must survive the manifest
-    f.height = 4;
-    f.width = 6;
-    f.pixels.resize(4 * 6 * 3);
-    for (std::size_t i = 0; i < f.pixels.size(); ++i)
-        f.pixels[i] = std::uint8_t((i * 37 + std::size_t(seed) * 11) % 256);
-    return f;
-}
 
 const Illumination kWhite = Illumination::parse("15,15,15");
 const Illumination kGreen = Illumination::parse("0,15,0");

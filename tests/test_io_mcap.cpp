@@ -58,7 +58,7 @@ std::vector<Record> records(const Bytes& b, std::size_t from, std::size_t to) {
 Bytes write_sample_file(const TempDir& tmp, std::size_t chunk_bytes) {
     const std::string path = tmp.file("s.mcap");
     std::FILE* f = std::fopen(path.c_str(), "wb");
-    io::mcap::Writer w(f, path, {"ros2", "vkfuse tests", chunk_bytes});
+    io::mcap::Writer w(f, path, {"ros2", "vkfuse tests", chunk_bytes, io::mcap::Compression::None});
     write_sample(w);
     std::fclose(f);
     f = std::fopen(path.c_str(), "rb");

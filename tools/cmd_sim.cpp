@@ -16,7 +16,7 @@ namespace vkfuse::cli {
 namespace {
 
 constexpr OptionSpec kOptions[] = {
-    {"--out", "", "DIR", "the dataset directory, created new (default sim-dataset)"},
+    {"--out", "", "DIR|FILE.mcap", "the dataset: a new directory, or one MCAP file (default sim-dataset)"},
     {"--objects", "", "A,B", "objects to press, in order (default every object but nothing)"},
     {"--grid", "", "V,V", "LED levels 0..15; every r,g,b combination is captured (default 0,1,5,15: 64 settings)"},
     {"--frames", "", "N", "frames per object and setting (default 1)"},
@@ -55,7 +55,7 @@ int run(const Args& args) {
     // Written beside its name and renamed into place when complete: an
     // interrupted or failed recording leaves nothing behind.
     StopSignal stop;
-    StagedDirectory staged(out, StagedDirectory::Policy{"--out", false, nullptr, ""});
+    StagedDataset staged(out, "--out");
     Progress progress("vkfuse sim");
     rec.progress = [&](std::size_t done, std::size_t total) {
         if (stop.requested()) throw Error(ErrorKind::InvalidArgument, "--out " + out + ": interrupted; nothing written");

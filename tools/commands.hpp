@@ -16,6 +16,7 @@ extern const Command metrics_command;
 extern const Command info_command;
 extern const Command run_command;
 extern const Command sim_command;
+extern const Command convert_command;
 extern const Command study_command;
 extern const Command tune_command;
 extern const Command devices_command;

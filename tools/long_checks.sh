@@ -32,15 +32,17 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKFUSE_FUZZ=ON \
     -DVKFUSE_BUILD_TESTS=OFF -DVKFUSE_BUILD_BENCH=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_png fuzz_npy fuzz_args
-for target in png npy args; do
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_png fuzz_npy fuzz_args fuzz_mcap
+for target in png npy args mcap; do
     mkdir -p "build-fuzz/found-$target"
     extra=()
     [ -f "fuzz/$target.dict" ] && extra+=("-dict=fuzz/$target.dict")
     inputs=("fuzz/corpus/$target")
     [ -d "fuzz/regressions/$target" ] && inputs+=("fuzz/regressions/$target")
     status=0
-    "build-fuzz/fuzz/fuzz_$target" -max_total_time="$FUZZ_SECONDS" -max_len=4096 -print_final_stats=1 "${extra[@]}" \
+    max_len=4096
+    [ "$target" = mcap ] && max_len=65536  # a recording of two small sensors
+    "build-fuzz/fuzz/fuzz_$target" -max_total_time="$FUZZ_SECONDS" -max_len="$max_len" -print_final_stats=1 "${extra[@]}" \
         -artifact_prefix="build-fuzz/crash-$target-" "build-fuzz/found-$target" "${inputs[@]}" \
         >"build-fuzz/fuzz-$target.log" 2>&1 || status=$?
     echo "fuzz_$target: $(grep -E '^Done [0-9]+ runs' "build-fuzz/fuzz-$target.log" || echo 'no summary')"
@@ -50,7 +52,7 @@ for target in png npy args; do
         exit 1
     fi
 done
-stage_done "fuzzing (3 x $FUZZ_SECONDS s)"
+stage_done "fuzzing (4 x $FUZZ_SECONDS s)"
 
 # 2. Soaks. (a) Plan::run 100,000 times: memory flat, output bit-identical for
 #    identical input, no Vulkan object leaked (64x48 frames: ~2 ms a cycle on

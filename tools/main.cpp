@@ -19,8 +19,9 @@ namespace {
 
 constexpr int kFailure = 2;
 
-const std::array<const Command*, 8> kCommands{&fuse_command,  &metrics_command, &run_command,  &sim_command,
-                                               &study_command, &tune_command,    &info_command, &devices_command};
+const std::array<const Command*, 9> kCommands{&fuse_command,  &metrics_command, &run_command,
+                                               &sim_command,   &convert_command, &study_command,
+                                               &tune_command,  &info_command,    &devices_command};
 
 std::string top_level_help() {
     std::string text = "vkfuse " + std::string(kVersion) +

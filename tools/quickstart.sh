@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libgtest-dev libvulkan-dev libvulkan1
+PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libzstd-dev liblz4-dev libgtest-dev libvulkan-dev libvulkan1
           mesa-vulkan-drivers vulkan-validationlayers glslang-tools pybind11-dev python3-dev
           cyclonedds-dev cyclonedds-tools)  # Cyclone DDS: `vkfuse run --publish ros2`
 

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "vkfuse/core/error.hpp"
+#include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse::cli {
 namespace {
@@ -134,6 +135,62 @@ void StagedDirectory::publish() {
     done_ = true;  // keep this command's results where they are
     fail(ErrorKind::Io, about + ": cannot put the results in place (" + errno_text(err) +
                             "); they are in " + staging_);
+}
+
+StagedFile::StagedFile(std::string target, std::string option) : target_(std::move(target)), option_(std::move(option)) {
+    const std::string about = option_ + " " + target_;
+    const fs::path p(target_);
+    if (target_.empty() || !p.has_filename() || p.filename() == "." || p.filename() == "..")
+        fail(ErrorKind::InvalidArgument, about + ": name a file");
+    struct stat st {};
+    if (::lstat(target_.c_str(), &st) == 0) fail(ErrorKind::InvalidArgument, about + ": exists (name a new file)");
+    if (errno != ENOENT) fail(ErrorKind::Io, about + ": " + errno_text(errno));
+    staging_ = make_unique_directory(parent_of(target_), ".vkfuse-partial-", about);
+    path_ = (fs::path(staging_) / p.filename()).string();
+}
+
+StagedFile::~StagedFile() {
+    if (!done_) remove_tree(staging_);
+}
+
+void StagedFile::publish() {
+    const std::string about = option_ + " " + target_;
+    if (::renameat2(AT_FDCWD, path_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) != 0) {
+        int err = errno;
+        // A file system without renameat2's flags: a hard link never replaces either.
+        if (err == EINVAL || err == ENOSYS) {
+            if (::link(path_.c_str(), target_.c_str()) == 0) {
+                ::unlink(path_.c_str());
+                err = 0;
+            } else {
+                err = errno;
+            }
+        }
+        if (err != 0) {
+            done_ = true;  // keep this command's file where it is
+            fail(ErrorKind::Io, about + ": cannot put the file in place (" + errno_text(err) + "); it is " + path_);
+        }
+    }
+    done_ = true;
+    ::rmdir(staging_.c_str());
+}
+
+StagedDataset::StagedDataset(const std::string& target, const std::string& option) {
+    if (is_mcap_path(target))
+        file_ = std::make_unique<StagedFile>(target, option);
+    else
+        directory_ = std::make_unique<StagedDirectory>(target, StagedDirectory::Policy{option, false, nullptr, ""});
+}
+
+StagedDataset::~StagedDataset() = default;
+
+const std::string& StagedDataset::path() const { return file_ ? file_->path() : directory_->path(); }
+const std::string& StagedDataset::target() const { return file_ ? file_->target() : directory_->target(); }
+std::string StagedDataset::where() const { return directory_ ? directory_->where() : std::string(); }
+
+void StagedDataset::publish() {
+    if (file_) file_->publish();
+    if (directory_) directory_->publish();
 }
 
 }  // namespace vkfuse::cli

@@ -8,6 +8,7 @@
 // that was already there.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace vkfuse::cli {
@@ -54,6 +55,46 @@ private:
     std::string staging_;
     Policy policy_;
     bool done_ = false;
+};
+
+// One output file that appears whole or not at all, never over a file that
+// is there: written at path(), inside a fresh hidden directory beside target
+// (".vkfuse-partial-XXXXXXXX"), and moved to target by publish() in one
+// rename that refuses to replace anything (`vkfuse run --record rig.mcap`).
+class StagedFile {
+public:
+    // Throws Error(InvalidArgument / Io), one line naming target, when it
+    // exists (even as a dangling link) or cannot be staged beside.
+    StagedFile(std::string target, std::string option);
+    ~StagedFile();
+    StagedFile(const StagedFile&) = delete;
+    StagedFile& operator=(const StagedFile&) = delete;
+
+    const std::string& path() const { return path_; }
+    const std::string& target() const { return target_; }
+    // Throws Error(Io) saying where the file is when target appeared meanwhile.
+    void publish();
+
+private:
+    std::string target_, option_, staging_, path_;
+    bool done_ = false;
+};
+
+// A dataset's output in the form its name asks for (is_mcap_path): one MCAP
+// file (StagedFile) or a directory (StagedDirectory, never replacing).
+class StagedDataset {
+public:
+    StagedDataset(const std::string& target, const std::string& option);
+    ~StagedDataset();
+    const std::string& path() const;    // where to write now
+    const std::string& target() const;  // as the user wrote it
+    // The normalised directory, for comparing with another output ("" for a file).
+    std::string where() const;
+    void publish();
+
+private:
+    std::unique_ptr<StagedDirectory> directory_;
+    std::unique_ptr<StagedFile> file_;
 };
 
 }  // namespace vkfuse::cli

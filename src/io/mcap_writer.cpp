@@ -1,8 +1,8 @@
-// MCAP files written as a stream (mcap_writer.hpp). Every integer is little
-// endian; a string is a u32 length and its bytes; a map or an array a u32
-// length in bytes and its entries; a record an opcode byte, a u64 length and
-// its content.
+// MCAP files written as a stream (mcap_writer.hpp), in the record layer of
+// mcap_records.hpp.
 #include "io/mcap_writer.hpp"
+
+#include "io/mcap_records.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,54 +13,6 @@
 
 namespace vkfuse::io::mcap {
 namespace {
-
-constexpr std::uint8_t kMagic[] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
-
-enum Op : std::uint8_t {
-    kHeader = 0x01,
-    kFooter = 0x02,
-    kSchema = 0x03,
-    kChannel = 0x04,
-    kMessage = 0x05,
-    kChunk = 0x06,
-    kMessageIndex = 0x07,
-    kChunkIndex = 0x08,
-    kStatistics = 0x0B,
-    kSummaryOffset = 0x0E,
-    kDataEnd = 0x0F,
-};
-
-// The bytes of one record's content, or of a map or array inside one (in a
-// std::string: GCC 12 misreads growing a vector of bytes from empty as an
-// overflow).
-struct Bytes {
-    std::string v;
-
-    template <class T>
-    Bytes& num(T x) {
-        for (std::size_t i = 0; i < sizeof(T); ++i) v.push_back(char(std::uint8_t(std::uint64_t(x) >> (8 * i))));
-        return *this;
-    }
-    Bytes& raw(std::string_view b) {
-        v.append(b);
-        return *this;
-    }
-    Bytes& raw(std::span<const std::uint8_t> b) {
-        return raw(std::string_view(reinterpret_cast<const char*>(b.data()), b.size()));
-    }
-    Bytes& str(const std::string& s) { return num(std::uint32_t(s.size())).raw(std::string_view(s)); }
-    Bytes& u32_prefixed(const Bytes& inner) { return num(std::uint32_t(inner.v.size())).raw(std::string_view(inner.v)); }
-};
-
-std::string record(Op op, const Bytes& content) {
-    Bytes r;
-    r.num(std::uint8_t(op)).num(std::uint64_t(content.v.size())).raw(std::string_view(content.v));
-    return r.v;
-}
-
-std::span<const std::uint8_t> bytes_of(std::string_view s) {
-    return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
-}
 
 const std::array<std::uint32_t, 256>& crc_table() {
     static const std::array<std::uint32_t, 256> table = [] {
@@ -161,12 +113,24 @@ void Writer::write(std::uint16_t channel, std::uint32_t sequence, std::uint64_t 
     if (chunk_.size() >= options_.chunk_bytes) close_chunk();
 }
 
+void Writer::add_metadata(const std::string& name, const std::map<std::string, std::string>& entries) {
+    if (finished_) throw Error(ErrorKind::InvalidArgument, name_ + ": metadata after finish()");
+    Bytes map;
+    for (const auto& [k, v] : entries) map.str(k).str(v);
+    Bytes b;
+    b.str(name).u32_prefixed(map);
+    const std::string r = record(kMetadata, b);
+    metadata_indexes_.push_back({offset_, r.size(), name});
+    put(r);
+}
+
 void Writer::close_chunk() {
     if (chunk_messages_.empty()) return;
-    ChunkIndex index{chunk_start_, chunk_end_, offset_, 0, {}, 0, chunk_.size()};
+    const std::string stored = compress(options_.compression, chunk_);
+    ChunkIndex index{chunk_start_, chunk_end_, offset_, 0, {}, 0, chunk_.size(), stored.size()};
     Bytes chunk;
-    chunk.num(chunk_start_).num(chunk_end_).num(std::uint64_t(chunk_.size())).num(crc32(bytes_of(chunk_))).str("");
-    chunk.num(std::uint64_t(chunk_.size())).raw(std::string_view(chunk_));
+    chunk.num(chunk_start_).num(chunk_end_).num(std::uint64_t(chunk_.size())).num(crc32(bytes_of(chunk_)));
+    chunk.str(to_string(options_.compression)).num(std::uint64_t(stored.size())).raw(std::string_view(stored));
     const std::string chunk_record = record(kChunk, chunk);
     index.length = chunk_record.size();
     put(chunk_record);
@@ -221,9 +185,16 @@ void Writer::finish() {
         for (std::size_t i = 0; i < channels_.size(); ++i) counts.num(std::uint16_t(i + 1)).num(channels_[i].messages);
         Bytes s;
         s.num(message_count_).num(std::uint16_t(schemas_.size())).num(std::uint32_t(channels_.size()));
-        s.num(std::uint32_t(0)).num(std::uint32_t(0)).num(std::uint32_t(chunk_indexes_.size()));
+        s.num(std::uint32_t(0)).num(std::uint32_t(metadata_indexes_.size())).num(std::uint32_t(chunk_indexes_.size()));
         s.num(first_time_).num(last_time_).u32_prefixed(counts);
         summary(record(kStatistics, s));
+    });
+    group(kMetadataIndex, [&] {
+        for (const MetadataIndex& m : metadata_indexes_) {
+            Bytes b;
+            b.num(m.offset).num(m.length).str(m.name);
+            summary(record(kMetadataIndex, b));
+        }
     });
     group(kChunkIndex, [&] {
         for (const ChunkIndex& c : chunk_indexes_) {
@@ -231,7 +202,7 @@ void Writer::finish() {
             for (const auto& [channel, at] : c.index_offsets) offsets.num(channel).num(at);
             Bytes b;
             b.num(c.start_time).num(c.end_time).num(c.offset).num(c.length).u32_prefixed(offsets);
-            b.num(c.index_length).str("").num(c.size).num(c.size);
+            b.num(c.index_length).str(to_string(options_.compression)).num(c.stored_size).num(c.size);
             summary(record(kChunkIndex, b));
         }
     });

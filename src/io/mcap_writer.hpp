@@ -10,7 +10,9 @@
 //
 // Schemas and channels are written into the chunk in which they are first
 // used (a reader streaming the file meets them before their messages) and
-// again in the summary. Chunks are stored uncompressed ("" compression).
+// again in the summary. Chunks are compressed as options say (zstd, lz4 or
+// none); Metadata records go straight to the data section, indexed in the
+// summary.
 // What the records mean for a rig (topics, ROS 2 encodings) is the caller's.
 #pragma once
 #include <cstdint>
@@ -21,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include "io/mcap_compression.hpp"
+
 namespace vkfuse::io::mcap {
 
 // CRC-32 (ISO-HDLC, zlib's) of data, continuing from crc (0 to start).
@@ -30,6 +34,7 @@ struct WriterOptions {
     std::string profile;                    // e.g. "ros2"
     std::string library = "vkfuse";
     std::size_t chunk_bytes = 4u << 20;     // a chunk is closed once its records reach this size
+    Compression compression = Compression::Zstd;
 };
 
 class Writer {
@@ -43,6 +48,8 @@ public:
     std::uint16_t add_schema(const std::string& name, const std::string& encoding, std::span<const std::uint8_t> data);
     std::uint16_t add_channel(std::uint16_t schema, const std::string& topic, const std::string& message_encoding,
                               const std::map<std::string, std::string>& metadata = {});
+    // A Metadata record (name and string pairs), written at once.
+    void add_metadata(const std::string& name, const std::map<std::string, std::string>& entries);
     // A message on channel (log and publish times in nanoseconds).
     void write(std::uint16_t channel, std::uint32_t sequence, std::uint64_t log_time, std::uint64_t publish_time,
                std::span<const std::uint8_t> data);
@@ -67,7 +74,11 @@ private:
     struct ChunkIndex {
         std::uint64_t start_time, end_time, offset, length;
         std::map<std::uint16_t, std::uint64_t> index_offsets;
-        std::uint64_t index_length, size;
+        std::uint64_t index_length, size, stored_size;  // size: uncompressed
+    };
+    struct MetadataIndex {
+        std::uint64_t offset, length;
+        std::string name;
     };
 
     void put(const std::string& bytes);  // to the file, counted and CRC'd
@@ -83,6 +94,7 @@ private:
     std::vector<Schema> schemas_;
     std::vector<Channel> channels_;
     std::vector<ChunkIndex> chunk_indexes_;
+    std::vector<MetadataIndex> metadata_indexes_;
     // The open chunk: its records (bytes), each channel's (log time, offset in the records).
     std::string chunk_;
     std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> chunk_messages_;

@@ -7,21 +7,12 @@
 #include "io/file_bytes.hpp"
 #include "io/path_component.hpp"
 #include "sensor/dataset_manifest.hpp"
+#include "sensor/dataset_mcap.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
 #include "vkfuse/sensor/dataset.hpp"
 
 namespace vkfuse {
-namespace {
-
-void check_unique_serials(const Dataset& d, const std::string& file) {
-    for (std::size_t i = 0; i < d.sensors.size(); ++i)
-        for (std::size_t j = 0; j < i; ++j)
-            if (d.sensors[i].info.serial == d.sensors[j].info.serial)
-                throw Error(ErrorKind::Format, file + ": sensor " + d.sensors[i].info.serial + " listed twice");
-}
-
-}  // namespace
 
 const DatasetSensorRecord& Dataset::sensor(const std::string& serial) const {
     std::string known;
@@ -55,7 +46,12 @@ int Dataset::background_frames(const IlluminationSequence& sequence) const {
     return sensors.empty() || sequence.empty() ? 0 : int(fewest);
 }
 
+bool is_mcap_path(const std::string& path) {
+    return path.size() > 5 && path.compare(path.size() - 5, 5, ".mcap") == 0;
+}
+
 Dataset read_dataset(const std::string& directory) {
+    if (is_mcap_path(directory)) return sensor::read_mcap_dataset(directory);
     const std::string file = io::resolve_inside(directory, sensor::kManifestName);
     // A manifest lists frames at ~150 bytes each: 256 MiB is over a million
     // frames, and keeps a hostile one from choosing how much memory we take.
@@ -64,11 +60,12 @@ Dataset read_dataset(const std::string& directory) {
     const json::Value manifest =
         json::parse(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file);
     Dataset d = sensor::dataset_from_json(manifest, file, directory);
-    check_unique_serials(d, file);
+    sensor::check_unique_serials(d, file);
     return d;
 }
 
 Frame load_frame(const Dataset& dataset, const DatasetSensorRecord& sensor, const DatasetFrame& frame) {
+    if (dataset.storage) return sensor::load_mcap_frame(dataset, sensor, frame);
     const std::string path = io::resolve_inside(dataset.directory, frame.file);
     const Image image = io::read_image(path);
     const SensorInfo& info = sensor.info;

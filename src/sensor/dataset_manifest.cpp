@@ -192,6 +192,20 @@ DatasetRun run_from(const Node& n) {
 
 }  // namespace
 
+DatasetTake& take_of(DatasetSensorRecord& s, const std::string& object, bool background) {
+    for (DatasetTake& t : s.takes)
+        if (t.object == object && t.background == background) return t;
+    s.takes.push_back({object, background, {}});
+    return s.takes.back();
+}
+
+void check_unique_serials(const Dataset& d, const std::string& file) {
+    for (std::size_t i = 0; i < d.sensors.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (d.sensors[i].info.serial == d.sensors[j].info.serial)
+                throw Error(ErrorKind::Format, file + ": sensor " + d.sensors[i].info.serial + " listed twice");
+}
+
 json::Value manifest_json(const Dataset& d) {
     Value::Array sensors;
     for (const DatasetSensorRecord& s : d.sensors) sensors.push_back(sensor_json(s));

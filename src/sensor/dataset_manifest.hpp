@@ -13,6 +13,12 @@ inline constexpr int kDatasetVersion = 1;
 
 json::Value manifest_json(const Dataset& dataset);
 
+// s's take of object (background or not), appended when it has none yet.
+DatasetTake& take_of(DatasetSensorRecord& s, const std::string& object, bool background);
+
+// Throws Error(Format) "<file>: sensor <serial> listed twice".
+void check_unique_serials(const Dataset& d, const std::string& file);
+
 // file names the manifest in messages; every problem is Error(Format)
 // "<file>: <where>: <problem>", e.g. "d/manifest.json: sensors[0].width: expected a positive integer".
 Dataset dataset_from_json(const json::Value& manifest, const std::string& file, const std::string& directory);

@@ -1,4 +1,5 @@
-// DatasetWriter: PNG frames as they come, the manifest when asked.
+// DatasetWriter: a folder's PNG frames as they come and its manifest when
+// asked, or an MCAP recording's messages (dataset_mcap_writer.cpp).
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
@@ -6,6 +7,7 @@
 #include "io/atomic_write.hpp"
 #include "io/path_component.hpp"
 #include "sensor/dataset_manifest.hpp"
+#include "sensor/dataset_mcap.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
 #include "vkfuse/sensor/dataset.hpp"
@@ -30,80 +32,116 @@ Image to_image(const Frame& f) {
     return img;
 }
 
-DatasetTake& take_of(DatasetSensorRecord& s, const std::string& object, bool background) {
-    for (DatasetTake& t : s.takes)
-        if (t.object == object && t.background == background) return t;
-    s.takes.push_back({object, background, {}});
-    return s.takes.back();
-}
-
 }  // namespace
 
-DatasetWriter::DatasetWriter(std::string directory, std::string source) {
-    prepare_directory(directory);
-    dataset_.directory = std::move(directory);
-    dataset_.source = std::move(source);
+struct DatasetWriter::Impl {
+    std::mutex mutex;
+    Dataset dataset;  // an MCAP recording's without its frames
+    std::vector<std::size_t> file_counters;  // per sensor, a folder's
+    std::unique_ptr<sensor::McapDatasetWriter> mcap;
+
+    // An MCAP recording describes its sensors and run before its first frame.
+    void check_not_started(const char* what) const {
+        if (mcap && mcap->started())
+            throw Error(ErrorKind::InvalidArgument, dataset.directory + ": " + what +
+                                                        " after the first frame (an MCAP recording describes them first)");
+    }
+    void check_sensor(int sensor) const {
+        if (sensor < 0 || std::size_t(sensor) >= dataset.sensors.size())
+            throw Error(ErrorKind::InvalidArgument, dataset.directory + ": no sensor #" + std::to_string(sensor));
+    }
+};
+
+DatasetWriter::DatasetWriter(std::string path, std::string source, DatasetWriterOptions options)
+    : impl_(std::make_unique<Impl>()) {
+    if (is_mcap_path(path))
+        impl_->mcap = std::make_unique<sensor::McapDatasetWriter>(path, options.compression);
+    else
+        prepare_directory(path);
+    impl_->dataset.directory = std::move(path);
+    impl_->dataset.source = std::move(source);
 }
+
+DatasetWriter::~DatasetWriter() = default;
+
+const std::string& DatasetWriter::directory() const { return impl_->dataset.directory; }
 
 int DatasetWriter::add_sensor(const SensorInfo& info) {
     io::check_plain_component(info.serial, "serial");
-    std::lock_guard lock(mutex_);
-    for (const DatasetSensorRecord& s : dataset_.sensors)
+    std::lock_guard lock(impl_->mutex);
+    impl_->check_not_started("a sensor added");
+    for (const DatasetSensorRecord& s : impl_->dataset.sensors)
         if (s.info.serial == info.serial)
-            throw Error(ErrorKind::InvalidArgument, dataset_.directory + ": sensor " + info.serial + " added twice");
-    dataset_.sensors.push_back({info, {}, {}});
-    file_counters_.push_back(0);
-    return int(dataset_.sensors.size()) - 1;
+            throw Error(ErrorKind::InvalidArgument, impl_->dataset.directory + ": sensor " + info.serial + " added twice");
+    impl_->dataset.sensors.push_back({info, {}, {}});
+    impl_->file_counters.push_back(0);
+    return int(impl_->dataset.sensors.size()) - 1;
 }
 
 void DatasetWriter::set_run(const DatasetRun& run) {
-    std::lock_guard lock(mutex_);
-    dataset_.run = run;
+    std::lock_guard lock(impl_->mutex);
+    impl_->check_not_started("the run set");
+    impl_->dataset.run = run;
 }
 
 void DatasetWriter::add_frame(int sensor, const std::string& object, bool background, const Frame& frame,
                               const Illumination& lit_by, std::int64_t cycle) {
     const std::string take = background ? std::string("background") : object;
     io::check_plain_component(take, "object");
+    Impl& im = *impl_;
     std::string relative;
     {
-        std::lock_guard lock(mutex_);
-        if (sensor < 0 || std::size_t(sensor) >= dataset_.sensors.size())
-            throw Error(ErrorKind::InvalidArgument, dataset_.directory + ": no sensor #" + std::to_string(sensor));
+        std::lock_guard lock(im.mutex);
+        im.check_sensor(sensor);
+        if (im.mcap) {
+            im.mcap->add_frame(im.dataset, sensor, object, background, frame, lit_by, cycle);
+            return;
+        }
         char number[32];
-        std::snprintf(number, sizeof number, "%06zu.png", file_counters_[std::size_t(sensor)]++);
-        relative = (fs::path(dataset_.sensors[std::size_t(sensor)].info.serial) / take / illumination_dir_name(lit_by) /
-                    number)
+        std::snprintf(number, sizeof number, "%06zu.png", im.file_counters[std::size_t(sensor)]++);
+        relative = (fs::path(im.dataset.sensors[std::size_t(sensor)].info.serial) / take /
+                    illumination_dir_name(lit_by) / number)
                        .string();
     }
     // The PNG is written outside the lock: other sensors' threads go on meanwhile.
-    const fs::path path = fs::path(dataset_.directory) / relative;
+    const fs::path path = fs::path(im.dataset.directory) / relative;
     std::error_code ec;
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw Error(ErrorKind::Io, path.parent_path().string() + ": cannot create: " + ec.message());
     io::write_image(path.string(), to_image(frame));
-    std::lock_guard lock(mutex_);
-    take_of(dataset_.sensors[std::size_t(sensor)], object, background)
-        .frames.push_back({relative, frame.index, frame.timestamp, lit_by, cycle});
+    std::lock_guard lock(im.mutex);
+    DatasetFrame f;
+    f.file = relative;
+    f.index = frame.index;
+    f.timestamp = frame.timestamp;
+    f.illumination = lit_by;
+    f.cycle = cycle;
+    sensor::take_of(im.dataset.sensors[std::size_t(sensor)], object, background).frames.push_back(std::move(f));
 }
 
 void DatasetWriter::add_miss(int sensor, const DatasetMiss& miss) {
     if (miss.status != "timeout" && miss.status != "failed")
-        throw Error(ErrorKind::InvalidArgument, dataset_.directory + ": miss status \"" + miss.status +
+        throw Error(ErrorKind::InvalidArgument, impl_->dataset.directory + ": miss status \"" + miss.status +
                                                     "\" (expected timeout or failed)");
-    std::lock_guard lock(mutex_);
-    if (sensor < 0 || std::size_t(sensor) >= dataset_.sensors.size())
-        throw Error(ErrorKind::InvalidArgument, dataset_.directory + ": no sensor #" + std::to_string(sensor));
-    dataset_.sensors[std::size_t(sensor)].missed.push_back(miss);
+    std::lock_guard lock(impl_->mutex);
+    impl_->check_sensor(sensor);
+    if (impl_->mcap)
+        impl_->mcap->add_miss(impl_->dataset, sensor, miss);
+    else
+        impl_->dataset.sensors[std::size_t(sensor)].missed.push_back(miss);
 }
 
 void DatasetWriter::finish() {
     std::string text;
     {
-        std::lock_guard lock(mutex_);
-        text = json::write(sensor::manifest_json(dataset_));
+        std::lock_guard lock(impl_->mutex);
+        if (impl_->mcap) {
+            impl_->mcap->finish(impl_->dataset);
+            return;
+        }
+        text = json::write(sensor::manifest_json(impl_->dataset));
     }
-    const std::string path = (fs::path(dataset_.directory) / sensor::kManifestName).string();
+    const std::string path = (fs::path(impl_->dataset.directory) / sensor::kManifestName).string();
     io::write_atomically(path, [&](std::FILE* out) {
         if (std::fwrite(text.data(), 1, text.size(), out) != text.size())
             throw Error(ErrorKind::Io, path + ": write failed");

@@ -10,8 +10,10 @@
 import { open, readFile } from "node:fs/promises";
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
 import { FileHandleReadable } from "@mcap/nodejs";
+import { loadDecompressHandlers } from "@mcap/support";
 
 const file = process.argv[2];
+const decompressHandlers = await loadDecompressHandlers();
 const line = (channels, m) => {
   let sum = 0;
   for (const b of m.data) sum = (sum + b) >>> 0;
@@ -19,13 +21,13 @@ const line = (channels, m) => {
 };
 
 const handle = await open(file, "r");
-const indexed = await McapIndexedReader.Initialize({ readable: new FileHandleReadable(handle) });
+const indexed = await McapIndexedReader.Initialize({ readable: new FileHandleReadable(handle), decompressHandlers });
 if (!indexed.statistics) throw new Error(`${file}: no Statistics record`);
 const fromIndex = [];
 for await (const m of indexed.readMessages({ validateCrcs: true })) fromIndex.push(line(indexed.channelsById, m));
 await handle.close();
 
-const stream = new McapStreamReader({ validateCrcs: true });
+const stream = new McapStreamReader({ validateCrcs: true, decompressHandlers });
 stream.append(await readFile(file));
 const channels = new Map();
 const fromStream = [];
@@ -44,4 +46,4 @@ if (fromIndex.join("\n") !== fromStream.join("\n")) throw new Error(`${file}: in
 for (const l of fromIndex) console.log(l);
 const s = indexed.statistics;
 console.log(`statistics messages ${s.messageCount} schemas ${s.schemaCount} channels ${s.channelCount} chunks ${s.chunkCount} ` +
-            `chunk_indexes ${indexed.chunkIndexes.length}`);
+            `chunk_indexes ${indexed.chunkIndexes.length} compression ${[...new Set(indexed.chunkIndexes.map((c) => c.compression))].join(",")}`);

@@ -47,9 +47,9 @@ constexpr OptionSpec kOptions[] = {
     {"--metrics", "", "LIST", "the metrics computed and written, comma-separated: sharpness, contrast, background_diff (default all three; background_diff needs a background)"},
     {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},
     {"--timeout", "", "SECONDS", "how long a cycle waits for a late sensor (default 5; 120 with --virtual-clock or --replay)"},
-    {"--replay", "", "DIR", "play a recorded dataset instead of simulating (vkfuse sim, vkfuse run --record)"},
+    {"--replay", "", "DIR|FILE.mcap", "play a recorded dataset instead of simulating (vkfuse sim, vkfuse run --record)"},
     {"--realtime", "", "", "with --replay: decode every frame first, then hand each over at the pace it was recorded, as the sensors did (default: as fast as the host fuses)"},
-    {"--record", "", "DIR", "record the frames fused (and the background frames) as a dataset (new directory)"},
+    {"--record", "", "DIR|FILE.mcap", "record the frames fused (and the background frames) as a dataset: a new directory, or one MCAP file (ROS 2 types, zstd)"},
     {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json (a new directory)"},
     {"--replace", "", "", "let --out name a previous run's directory: replaced whole once this run succeeds"},
     {"--publish", "", "ros2", "also publish every cycle on ROS 2's wire (DDS): /vkfuse/<serial>/fused, /vkfuse/<serial>/metrics, /vkfuse/rig, /diagnostics (see README, \"Rigs across machines\")"},
@@ -90,7 +90,8 @@ constexpr CommandSpec kSpec{
 struct Session : RigSession {
     // Declared before what writes into them: destroyed (removed unless
     // published) after the writers have closed their files.
-    std::unique_ptr<StagedDirectory> out_dir, record_dir;
+    std::unique_ptr<StagedDirectory> out_dir;
+    std::unique_ptr<StagedDataset> record;  // --record: a directory or one .mcap file
     std::unique_ptr<DatasetWriter> recorder;
     std::unique_ptr<RunOutput> output;
     std::unique_ptr<RunPublisher> publisher;  // --publish
@@ -105,8 +106,8 @@ void stage_outputs(Session& s, const Args& args) {
         s.out_dir = std::make_unique<StagedDirectory>(
             *o.out, StagedDirectory::Policy{"--out", args.has("--replace"), is_run_output_entry, "--replace"});
     if (o.record) {
-        s.record_dir = std::make_unique<StagedDirectory>(*o.record, StagedDirectory::Policy{"--record", false, nullptr, ""});
-        if (s.out_dir && s.out_dir->where() == s.record_dir->where())
+        s.record = std::make_unique<StagedDataset>(*o.record, "--record");
+        if (s.out_dir && s.out_dir->where() == s.record->where())
             throw Error(ErrorKind::InvalidArgument, "--record " + *o.record + ": the same directory as --out");
     }
 }
@@ -141,8 +142,8 @@ void open_outputs(Session& s) {
         s.output = std::make_unique<RunOutput>(s.out_dir->path(), o.object,
                                                static_slot(o.sequence, s.sensors.rig.front().sensor->info().leds),
                                                o.skip.policy != SkipPolicy::Off);
-    if (!s.record_dir) return;
-    s.recorder = std::make_unique<DatasetWriter>(s.record_dir->path(), "vkfuse run");
+    if (!s.record) return;
+    s.recorder = std::make_unique<DatasetWriter>(s.record->path(), "vkfuse run");
     for (const RigSensor& r : s.sensors.rig) s.recorder->add_sensor(r.sensor->info());
     s.recorder->set_run({s.options.sequence, s.options.fusion, s.options.background_frames});
 }
@@ -191,8 +192,8 @@ RunStats cycle_loop(Session& s, Rig& rig, const StopSignal& stop) {
 std::string left_as_they_were(const Session& s) {
     std::string kept;
     if (s.out_dir) kept = "--out " + s.out_dir->target();
-    if (s.record_dir) kept += (kept.empty() ? "--record " : " and --record ") + s.record_dir->target();
-    return kept.empty() ? "" : "; " + kept + " left as " + (s.out_dir && s.record_dir ? "they were" : "it was");
+    if (s.record) kept += (kept.empty() ? "--record " : " and --record ") + s.record->target();
+    return kept.empty() ? "" : "; " + kept + " left as " + (s.out_dir && s.record ? "they were" : "it was");
 }
 
 // A run publishes only results it can stand behind: at least one fused cycle,
@@ -211,7 +212,7 @@ void require_results(const Session& s, const RunStats& stats, bool interrupted) 
         if (stats.fused(i) == 0) {
             const std::string& why = stats.last_error(i);
             throw Error(ErrorKind::InvalidArgument,
-                        "--record " + s.record_dir->target() + ": " + s.sensors.rig[i].sensor->info().serial +
+                        "--record " + s.record->target() + ": " + s.sensors.rig[i].sensor->info().serial +
                             " delivered no whole cycle" + (why.empty() ? "" : " (" + why + ")") +
                             ", so the recording could not be replayed; nothing written" + left_as_they_were(s));
         }
@@ -245,7 +246,7 @@ int run(const Args& args) {
     // Without --out the summary on stdout is the only result: a failed write
     // (a full disk, a closed pipe) fails the run like any other lost output.
     print_checked(summary + "\n");
-    if (s.record_dir) s.record_dir->publish();
+    if (s.record) s.record->publish();
     if (s.out_dir) s.out_dir->publish();
     if (stop.requested())
         std::fprintf(stderr, "vkfuse run: interrupted after %llu cycle%s; wrote what they fused\n",

@@ -64,6 +64,7 @@ void open_sources(RigSession& s, const Args& args) {
         s.sensors = remote_sensors(s.options, args);
     } else if (s.options.replay) {
         s.dataset = std::make_shared<const Dataset>(read_dataset(*s.options.replay));
+        if (!s.dataset->incomplete.empty()) std::fprintf(stderr, "vkfuse run: %s\n", s.dataset->incomplete.c_str());
         adopt_recording(s.options, args, *s.dataset);
         require_replay_memory(s.options, s.dataset);
         s.sensors = replayed_sensors(s.options, s.dataset);

@@ -73,6 +73,7 @@ int run(const Args& args) {
     const std::string out = args.value("--out").value_or("study");
 
     const Dataset dataset = read_dataset(dataset_dir);
+    if (!dataset.incomplete.empty()) std::fprintf(stderr, "vkfuse study: %s\n", dataset.incomplete.c_str());
     if (quick && options.objects.empty()) {
         options.objects = dataset.objects();
         if (options.objects.size() > 2) options.objects.resize(2);

@@ -220,6 +220,7 @@ int run(const Args& args) {
         }
     }
     const Dataset dataset = read_dataset(dataset_dir);
+    if (!dataset.incomplete.empty()) std::fprintf(stderr, "vkfuse tune: %s\n", dataset.incomplete.c_str());
     std::optional<Context> context = open_backend(backend);
     Progress progress("vkfuse tune");
     options.progress = [&](std::size_t done, std::size_t total) {

@@ -2,7 +2,7 @@
 // participant (Cyclone DDS) that speaks ROS 2's names and types, so every
 // ROS 2 node on the network subscribes to it as to any ROS 2 publisher, with
 // no ROS installed here. Built as vkfuse::ros2 where Cyclone DDS is found;
-// the other libraries never depend on it. The topics (docs/ros2.md):
+// the other libraries never depend on it. The topics (README, "Rigs across machines: ROS 2"):
 //
 //   /vkfuse/<token>/fused       sensor_msgs/msg/Image (rgb8, or 32FC3); the last 3 kept
 //   /vkfuse/<token>/metrics     vkfuse_msgs/msg/FusionMetrics; the last 20 kept

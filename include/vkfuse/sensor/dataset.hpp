@@ -1,6 +1,9 @@
-// vkfuse/sensor/dataset.hpp - recorded sensor frames on disk: lossless 8-bit PNGs plus
-// one JSON manifest (README, "Datasets"). Written by `vkfuse sim` and
-// `vkfuse run --record`, replayed as a Sensor by `vkfuse run --replay`.
+// vkfuse/sensor/dataset.hpp - recorded sensor frames on disk, in either of two
+// forms (README, "Datasets"): a folder of lossless 8-bit PNGs plus one JSON
+// manifest, or one MCAP file (a path ending in .mcap) in ROS 2's types, which
+// ros2 bag, Foxglove and the MCAP tools open. Written by `vkfuse sim`,
+// `vkfuse run --record` and `vkfuse convert`, replayed as a Sensor by
+// `vkfuse run --replay`; both forms hold the same facts.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -19,7 +22,10 @@ namespace vkfuse {
 
 // One recorded frame.
 struct DatasetFrame {
-    std::string file;           // PNG, relative to the dataset directory
+    std::string file;           // a folder's PNG, relative to the dataset directory
+    // An MCAP recording's frame: where its message lies (its chunk's file
+    // offset, and its record's offset in the chunk).
+    std::uint64_t chunk = 0, record = 0;
     std::uint64_t index = 0;    // the sensor's frame counter
     double timestamp = 0;       // start of exposure, sensor clock (seconds)
     Illumination illumination;  // the setting that lit the whole frame
@@ -54,11 +60,19 @@ struct DatasetRun {
     int background_frames = 0;  // per setting, in each sensor's background take
 };
 
+// An MCAP recording kept open while its dataset is in use.
+struct DatasetStorage;
+
 struct Dataset {
-    std::string directory;
+    std::string directory;  // the folder, or the .mcap file
     std::string source;  // "vkfuse sim", "vkfuse run", ...
     std::vector<DatasetSensorRecord> sensors;
     std::optional<DatasetRun> run;
+    std::shared_ptr<DatasetStorage> storage;  // an MCAP recording's; nullptr for a folder
+    // A recording cut short (a crash, a full disk): where reading stopped and
+    // why, in one line; "" when it is whole. Its dataset holds the whole
+    // cycles before that point.
+    std::string incomplete;
 
     // Throws Error(InvalidArgument) "<directory>: no sensor <serial> (has ...)".
     const DatasetSensorRecord& sensor(const std::string& serial) const;
@@ -70,40 +84,56 @@ struct Dataset {
     int background_frames(const IlluminationSequence& sequence) const;
 };
 
-// Reads and checks DIR/manifest.json (frames are loaded when played). Throws
-// Error(Io) when it is missing, Error(Format) "DIR/manifest.json: <where>:
+// Reads and checks DIR/manifest.json, or a recording's .mcap file (frames are
+// loaded when played). Throws Error(Io) when it is missing, Error(Format)
+// "DIR/manifest.json: <where>: <problem>" or "FILE.mcap: byte N: <record>:
 // <problem>" when it is malformed.
-Dataset read_dataset(const std::string& directory);
+Dataset read_dataset(const std::string& path);
+
+// Whether path names the MCAP form (it ends in ".mcap").
+bool is_mcap_path(const std::string& path);
 
 // Loads one recorded frame as the sensor delivered it (PNG -> 8-bit RGB).
 // Throws Error naming the file when it is missing, corrupt or of another shape.
 Frame load_frame(const Dataset& dataset, const DatasetSensorRecord& sensor, const DatasetFrame& frame);
 
+// How an MCAP recording is written.
+struct DatasetWriterOptions {
+    std::string compression = "zstd";  // of its chunks: zstd, lz4 or none
+};
+
 // Writes a dataset. Thread-safe: capture threads of several sensors may add
-// frames at once (each PNG is written outside the lock). The manifest is
-// written by finish(), atomically, and may be rewritten after more frames.
+// frames at once (each PNG is written outside the lock). A folder's manifest
+// is written by finish(), atomically, and may be rewritten after more frames;
+// an MCAP file is streamed (sensors and run first, then frames as they come)
+// and closed by finish(), its summary and index last.
 class DatasetWriter {
 public:
-    // Creates directory (parents too); refuses one that exists and is not empty.
-    DatasetWriter(std::string directory, std::string source);
+    // A path ending in .mcap: creates that file, refusing one that exists.
+    // Otherwise creates the directory (parents too), refusing one that exists
+    // and is not empty.
+    DatasetWriter(std::string path, std::string source, DatasetWriterOptions options = {});
+    ~DatasetWriter();
 
     // Registers a sensor; returns its index for add_frame.
     int add_sensor(const SensorInfo& info);
     void set_run(const DatasetRun& run);
     // Writes frame as DIR/<serial>/<take>/<r-g-b>/<nnnnnn>.png, where take is
-    // "background" or the object, and lists it in the manifest.
+    // "background" or the object, and lists it in the manifest; or as a
+    // message on the recording's /vkfuse/<token>/frame. An MCAP recording
+    // takes every sensor and the run before its first frame.
     void add_frame(int sensor, const std::string& object, bool background, const Frame& frame,
                    const Illumination& lit_by, std::int64_t cycle = -1);
     // A cycle in which sensor delivered nothing (status "timeout" or "failed").
     void add_miss(int sensor, const DatasetMiss& miss);
     void finish();
 
-    const std::string& directory() const { return dataset_.directory; }
+    const std::string& directory() const;
+
+    struct Impl;
 
 private:
-    std::mutex mutex_;
-    Dataset dataset_;
-    std::vector<std::size_t> file_counters_;  // per sensor
+    std::unique_ptr<Impl> impl_;
 };
 
 // Plays one recorded sensor: its background takes, then the takes of one
