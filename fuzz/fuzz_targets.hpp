@@ -17,6 +17,7 @@ int png(const std::uint8_t* data, std::size_t size);
 int npy(const std::uint8_t* data, std::size_t size);
 int args(const std::uint8_t* data, std::size_t size);
 int mcap(const std::uint8_t* data, std::size_t size);
+int ws(const std::uint8_t* data, std::size_t size);
 
 // A contract violation: say which, then abort so libFuzzer keeps the input.
 [[noreturn]] inline void violated(const char* what, const char* detail) {

@@ -100,6 +100,7 @@ TEST(FuzzReplay, Png) { EXPECT_GE(replay("png", png), 5u); }
 TEST(FuzzReplay, Npy) { EXPECT_GE(replay("npy", npy), 5u); }
 TEST(FuzzReplay, Args) { EXPECT_GE(replay("args", args), 5u); }
 TEST(FuzzReplay, Mcap) { EXPECT_GE(replay("mcap", mcap), 3u); }
+TEST(FuzzReplay, WebSocketMessages) { EXPECT_GE(replay("ws", ws), 5u); }
 
 }  // namespace
 }  // namespace vkfuse::fuzz

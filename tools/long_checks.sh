@@ -32,8 +32,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKFUSE_FUZZ=ON \
     -DVKFUSE_BUILD_TESTS=OFF -DVKFUSE_BUILD_BENCH=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_png fuzz_npy fuzz_args fuzz_mcap
-for target in png npy args mcap; do
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_png fuzz_npy fuzz_args fuzz_mcap fuzz_ws
+for target in png npy args mcap ws; do
     mkdir -p "build-fuzz/found-$target"
     extra=()
     [ -f "fuzz/$target.dict" ] && extra+=("-dict=fuzz/$target.dict")
@@ -52,7 +52,7 @@ for target in png npy args mcap; do
         exit 1
     fi
 done
-stage_done "fuzzing (4 x $FUZZ_SECONDS s)"
+stage_done "fuzzing (5 x $FUZZ_SECONDS s)"
 
 # 2. Soaks. (a) Plan::run 100,000 times: memory flat, output bit-identical for
 #    identical input, no Vulkan object leaked (64x48 frames: ~2 ms a cycle on

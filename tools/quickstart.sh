@@ -9,7 +9,8 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(cmake make g++ pkg-config libpng-dev libjpeg62-turbo-dev libzstd-dev liblz4-dev libgtest-dev libvulkan-dev libvulkan1
           mesa-vulkan-drivers vulkan-validationlayers glslang-tools pybind11-dev python3-dev
-          cyclonedds-dev cyclonedds-tools)  # Cyclone DDS: `vkfuse run --publish ros2`
+          cyclonedds-dev cyclonedds-tools  # Cyclone DDS: `vkfuse run --publish ros2`
+          libboost1.81-dev)  # Boost.Beast: `vkfuse run --serve`
 
 # What the ros2 tests read vkfuse's topics with (Fast DDS, the other DDS ROS 2
 # ships), and make two hosts of one machine with (network namespaces, nftables).
@@ -21,8 +22,10 @@ PYTHON_TEST_PACKAGES=(python3-pytest python3-numpy python3-pywt python3-opencv p
                       python3-venv python3-pip python3-setuptools python3-wheel libdlpack-dev)
 
 # What reads vkfuse's MCAP files back in the tests (tests/mcap: @mcap/core from
-# npm). Node's npm comes with it from NodeSource, from Debian as its own package.
-NODE_TEST_PACKAGES=(nodejs)
+# npm), and the real browser and protocol client the live page is checked with
+# (tests/serve: Debian's chromium driven by puppeteer-core from npm, Python's
+# websockets). Node's npm comes with it from NodeSource, from Debian as its own package.
+NODE_TEST_PACKAGES=(nodejs chromium python3-websockets)
 
 # What the hardware-in-the-loop test needs (ctest -L hil, tests/hil): QEMU to
 # boot Debian's kernel with emulated DIGITs, busybox for its initramfs,

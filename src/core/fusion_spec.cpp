@@ -63,6 +63,12 @@ std::string_view to_string(Wavelet w) { return name_of(kWavelets, w); }
 std::string_view to_string(WaveletMode m) { return name_of(kModes, m); }
 std::string_view to_string(Rule r) { return name_of(kRules, r); }
 
+std::string method_label(const FusionSpec& fusion) {
+    std::string label(to_string(fusion.method));
+    if (core::method_info(fusion.method).uses_wavelet) label += "/" + std::string(to_string(fusion.wavelet));
+    return label;
+}
+
 Method parse_method(std::string_view s) {
     for (const core::MethodInfo& row : core::method_table())
         if (row.name == s) return row.method;

@@ -9,8 +9,8 @@
 #   check_mcap.sh SAMPLE_PROGRAM WORK
 set -euo pipefail
 sample=$1 work=$2
-source "$(dirname "$0")/node_work.sh"
-node_work "$work"
+source "$(dirname "$0")/../node_work.sh"
+node_work "$(cd "$(dirname "$0")" && pwd)" "$work"
 for compression in none zstd lz4; do
     for chunk in 1000000 2048; do
         what="$compression, chunk $chunk"

@@ -14,8 +14,8 @@
 #   check_recording.sh VKFUSE WORK
 set -euo pipefail
 vkfuse=$1 work=$2
-source "$(dirname "$0")/node_work.sh"
-node_work "$work"
+source "$(dirname "$0")/../node_work.sh"
+node_work "$(cd "$(dirname "$0")" && pwd)" "$work"
 run=$work/recording
 rm -rf "$run" && mkdir -p "$run" && cd "$run"
 fail() { echo "mcap recording: $*"; exit 1; }

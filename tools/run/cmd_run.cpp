@@ -9,6 +9,9 @@
 #include "run/run_options.hpp"
 #include "run/run_output.hpp"
 #include "run/run_publish.hpp"
+#ifdef VKFUSE_WITH_SERVE
+#include "serve/live_server.hpp"
+#endif
 #include "run/run_session.hpp"
 #include "run/run_stats.hpp"
 #include "staged_directory.hpp"
@@ -53,6 +56,7 @@ constexpr OptionSpec kOptions[] = {
     {"--out", "", "DIR", "write fused PNGs, metrics.jsonl, side-by-side pictures, summary.json (a new directory)"},
     {"--replace", "", "", "let --out name a previous run's directory: replaced whole once this run succeeds"},
     {"--publish", "", "ros2", "also publish every cycle on ROS 2's wire (DDS): /vkfuse/<serial>/fused, /vkfuse/<serial>/metrics, /vkfuse/rig, /diagnostics (see README, \"Rigs across machines\")"},
+    {"--serve", "", "[ADDR:]PORT", "serve a live page of the rig and the Foxglove WebSocket protocol on this port (address 127.0.0.1 unless given; port 0: any free one, printed) (see README, \"Watching a rig\")"},
     {"--ros-domain", "", "N", "the ROS 2 domain to publish in, 0..232 (default: ROS_DOMAIN_ID, else 0)"},
     {"--publish-encoding", "", "E", "fused images as rgb8 (the samples of --out's PNGs) or 32FC3 (float32) (default rgb8)"},
     {"--publish-wait", "", "SECONDS", "before the first cycle, wait this long at most for subscribers to every topic each sensor publishes per cycle (default 0)"},
@@ -95,6 +99,9 @@ struct Session : RigSession {
     std::unique_ptr<DatasetWriter> recorder;
     std::unique_ptr<RunOutput> output;
     std::unique_ptr<RunPublisher> publisher;  // --publish
+#ifdef VKFUSE_WITH_SERVE
+    std::unique_ptr<serve::LiveServer> server;  // --serve
+#endif
 };
 
 // The target directories are checked (and their staging directories made)
@@ -148,6 +155,28 @@ void open_outputs(Session& s) {
     s.recorder->set_run({s.options.sequence, s.options.fusion, s.options.background_frames});
 }
 
+// --serve: listening before the rig starts, so a page opened now sees its first cycle.
+void start_server(Session& s) {
+#ifdef VKFUSE_WITH_SERVE
+    if (!s.options.serve) return;
+    const RunOptions& o = s.options;
+    serve::LiveRig live;
+    for (const RigSensor& r : s.sensors.rig) live.sensors.push_back(r.sensor->info());
+    live.sequence = o.sequence;
+    live.method = method_label(o.fusion);
+    live.object = o.object;
+    live.static_slot = static_slot(o.sequence, live.sensors.front().leds);
+    live.skipping = o.skip.policy != SkipPolicy::Off;
+    const serve::ServeAddress address = serve::parse_serve_address(*o.serve);
+    s.server = std::make_unique<serve::LiveServer>(address, serve::LiveChannels(live));
+    const std::string host = address.host.find(':') != std::string::npos ? "[" + address.host + "]" : address.host;
+    std::fprintf(stderr, "vkfuse run: serving http://%s:%u/ (Foxglove: ws://%s:%u)\n", host.c_str(),
+                 unsigned(s.server->port()), host.c_str(), unsigned(s.server->port()));
+#else
+    (void)s;
+#endif
+}
+
 void record_cycle(DatasetWriter& rec, const CycleResult& cycle, const RunOptions& o) {
     for (std::size_t i = 0; i < cycle.sensors.size(); ++i) {
         const SensorCycle& s = cycle.sensors[i];
@@ -179,6 +208,9 @@ RunStats cycle_loop(Session& s, Rig& rig, const StopSignal& stop) {
         const auto write_start = std::chrono::steady_clock::now();
         if (s.output) s.output->write(cycle);
         if (s.publisher) s.publisher->publish(cycle);
+#ifdef VKFUSE_WITH_SERVE
+        if (s.server) s.server->publish(cycle);
+#endif
         if (s.recorder) record_cycle(*s.recorder, cycle, s.options);
         stats.add(cycle, std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count());
         if (stats.fused() == 0 && rig.all_failed()) break;  // the run fails with the sensors' error alone
@@ -237,6 +269,7 @@ int run(const Args& args) {
     // reaches it only as history, which a capture host that exits at once
     // can take away with it).
     if (s.publisher) s.publisher->wait_for_subscribers();
+    start_server(s);
     rig.start();
     const RunStats stats = cycle_loop(s, rig, stop);
     const std::string summary = stats.summary_json(rig, source_summary(s.sensors));

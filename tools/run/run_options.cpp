@@ -9,6 +9,9 @@
 #include "run/run_config.hpp"
 #include "sim_record.hpp"
 #include "vkfuse/core/error.hpp"
+#ifdef VKFUSE_WITH_SERVE
+#include "serve/live_server.hpp"
+#endif
 #include "vkfuse/sensor/sim_digit.hpp"
 
 namespace vkfuse::cli {
@@ -21,6 +24,18 @@ constexpr bool kBuiltWithRos2 = true;
 #else
 constexpr bool kBuiltWithRos2 = false;
 #endif
+
+// --serve: its address checked now; a vkfuse built without Boost.Beast refuses it with one line.
+void serve_option(const Args& args, RunOptions& o) {
+    o.serve = args.value("--serve");
+    if (!o.serve) return;
+#ifdef VKFUSE_WITH_SERVE
+    serve::parse_serve_address(*o.serve);
+#else
+    args.usage_error("--serve: this vkfuse was built without the live server (Boost.Beast: apt-get install "
+                     "libboost1.81-dev, then rebuild)");
+#endif
+}
 
 std::string format_seconds(double s) {
     char text[32];
@@ -233,6 +248,7 @@ RunOptions parse_run_options(const Args& args) {
     if (auto v = args.value("--timeout")) o.timeout_s = parse_seconds("--timeout", *v);
     if (auto v = args.value("--startup-timeout")) o.startup_timeout_s = parse_seconds("--startup-timeout", *v);
     publish_options(args, o);
+    serve_option(args, o);
     capture_only_options(args, o);
     return o;
 }

@@ -71,6 +71,9 @@ struct RunOptions {
     // (the serials: digits, from --sensor; empty: the first host's).
     bool source_ros2 = false;
     double startup_timeout_s = 60;  // --startup-timeout (RigConfig::startup_timeout_s)
+    // --serve [ADDR:]PORT: the live page and the Foxglove WebSocket protocol
+    // (tools/serve/live_server.hpp), checked while parsing.
+    std::optional<std::string> serve;
     int source_queue = 4;           // --queue: cycles each remote sensor keeps (RemoteRigOptions::queue_cycles)
 };
 

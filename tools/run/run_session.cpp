@@ -87,7 +87,7 @@ RigConfig rig_config(const RigSession& s) {
     cfg.cycle_timeout_s = o.timeout_s;
     cfg.startup_timeout_s = o.startup_timeout_s;
     cfg.fuse = !o.capture_only;
-    cfg.want_fused = o.out.has_value() || o.publish_ros2;
+    cfg.want_fused = o.out.has_value() || o.publish_ros2 || o.serve.has_value();
     cfg.skip = o.skip;
     cfg.metrics = o.metrics;
     cfg.watch_when_idle = !o.record;  // a dataset holds every setting of every cycle

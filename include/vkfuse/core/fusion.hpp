@@ -43,6 +43,9 @@ WaveletMode parse_wavelet_mode(std::string_view);
 Rule parse_rule(std::string_view);
 // As parse_rule, naming the option in the message ("--base-rule" or "--detail-rule").
 Rule parse_rule(std::string_view name, std::string_view option);
+// The method with its wavelet where it has one: "wavelet/bior4.4", "laplacian"
+// (how ROS 2's messages and the live page name a fusion).
+std::string method_label(const FusionSpec& fusion);
 
 // Length of PyWavelets' decomposition filter (haar 2, db2 4, bior2.2 6, bior4.4 10).
 int filter_length(Wavelet);

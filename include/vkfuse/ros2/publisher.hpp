@@ -134,8 +134,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// "wavelet/bior4.4", "laplacian": the fusion as /vkfuse/rig and every
-// FusionMetrics name it.
-std::string method_label(const FusionSpec& fusion);
-
 }  // namespace vkfuse::ros2
