@@ -43,10 +43,10 @@ TEST(Ros2Names, DomainsAndEncodingsAreCheckedAsRos2ReadsThem) {
     EXPECT_EQ(ros2::parse_image_encoding("rgb8"), ros2::ImageEncoding::Rgb8);
     EXPECT_EQ(ros2::parse_image_encoding("32FC3"), ros2::ImageEncoding::Float32);
     EXPECT_FALSE(ros2::parse_image_encoding("bgr8"));
-    EXPECT_EQ(ros2::method_label(FusionSpec{}), "wavelet/bior4.4");
+    EXPECT_EQ(method_label(FusionSpec{}), "wavelet/bior4.4");
     FusionSpec brovey;
     brovey.method = Method::Brovey;
-    EXPECT_EQ(ros2::method_label(brovey), "brovey");
+    EXPECT_EQ(method_label(brovey), "brovey");
 }
 
 TEST(Ros2Names, SerialsSharingATopicAreRefused) {
