@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "cli_runner.hpp"
+#include "run/caption.hpp"
 #include "vkfuse/core/io.hpp"
 
 namespace vkfuse::test {
@@ -46,9 +47,20 @@ TEST(CliRun, SimulatedCoinWithOutputs) {
         files_under(tmp.file("out")),
         (std::vector<std::string>{"fused/SIM-0001/000000.png", "fused/SIM-0001/000001.png", "fused/SIM-0001/000002.png",
                                   "metrics.jsonl", "side_by_side/coin_SIM-0001.png", "summary.json"}));
+    // static | fused under a caption of three lines (tools/run/caption.hpp):
+    // the fused side is the last cycle's fused PNG.
     const Image pair = io::read_image(tmp.file("out/side_by_side/coin_SIM-0001.png"));
+    const Image fused = io::read_image(tmp.file("out/fused/SIM-0001/000002.png"));
+    const int band = 3 * (cli::kGlyphHeight + 5) + 4;
     EXPECT_EQ(pair.width, 2 * 320 + 8);
-    EXPECT_EQ(pair.height, 240);
+    ASSERT_EQ(pair.height, 240 + band);
+    for (int y = 0; y < 240; y += 7)
+        for (int x = 0; x < 320; x += 5)
+            for (int c = 0; c < 3; ++c) ASSERT_EQ(pair.at(band + y, 328 + x, c), fused.at(y, x, c)) << y << " " << x;
+    float light = 0;  // the caption's text
+    for (int y = 0; y < band; ++y)
+        for (int x = 0; x < pair.width; ++x) light += pair.at(y, x, 0) > 0.5f;
+    EXPECT_GT(light, 500.0f);
     EXPECT_EQ(read_bytes(tmp.file("out/summary.json")), r.out);
 }
 

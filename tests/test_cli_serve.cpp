@@ -5,11 +5,14 @@
 #ifdef VKFUSE_WITH_SERVE
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "expect_error.hpp"
 #include "io/cdr.hpp"
 #include "io/json_value.hpp"
+#include "io/png.hpp"
+#include "sensor/frame_codec.hpp"
 #include "serve/foxglove_protocol.hpp"
 #include "serve/live_channels.hpp"
 #include "serve/live_server.hpp"
@@ -108,14 +111,22 @@ TEST(ServeChannels, EverySensorHasFusedLitAndMetricsThenStatusAndRig) {
     const LiveChannels live(rig);
     std::vector<std::string> topics;
     for (const Channel& c : live.channels()) topics.push_back(c.topic);
-    EXPECT_EQ(topics, (std::vector<std::string>{"/vkfuse/D2_01/fused", "/vkfuse/D2_01/lit/led_15_15_15",
-                                                "/vkfuse/D2_01/lit/led_0_15_0", "/vkfuse/D2_01/metrics",
-                                                "/vkfuse/sensor_7up/fused", "/vkfuse/sensor_7up/lit/led_15_15_15",
-                                                "/vkfuse/sensor_7up/lit/led_0_15_0", "/vkfuse/sensor_7up/metrics",
-                                                "/vkfuse/status", "/vkfuse/rig"}));
-    EXPECT_EQ(live.role(3).kind, ChannelRole::Lit);
-    EXPECT_EQ(live.role(3).slot, 1u);
-    EXPECT_EQ(live.role(8).sensor, 1u);
+    EXPECT_EQ(topics, (std::vector<std::string>{
+                          "/vkfuse/D2_01/fused", "/vkfuse/D2_01/fused/compressed", "/vkfuse/D2_01/lit/led_15_15_15",
+                          "/vkfuse/D2_01/lit/led_0_15_0", "/vkfuse/D2_01/lit/led_15_15_15/compressed",
+                          "/vkfuse/D2_01/lit/led_0_15_0/compressed", "/vkfuse/D2_01/metrics",
+                          "/vkfuse/sensor_7up/fused", "/vkfuse/sensor_7up/fused/compressed",
+                          "/vkfuse/sensor_7up/lit/led_15_15_15", "/vkfuse/sensor_7up/lit/led_0_15_0",
+                          "/vkfuse/sensor_7up/lit/led_15_15_15/compressed",
+                          "/vkfuse/sensor_7up/lit/led_0_15_0/compressed", "/vkfuse/sensor_7up/metrics",
+                          "/vkfuse/status", "/vkfuse/rig"}));
+    EXPECT_EQ(live.role(2).kind, ChannelRole::FusedPng);
+    EXPECT_EQ(live.role(4).kind, ChannelRole::Lit);
+    EXPECT_EQ(live.role(4).slot, 1u);
+    EXPECT_EQ(live.role(6).kind, ChannelRole::LitJpeg);
+    EXPECT_EQ(live.role(6).slot, 1u);
+    EXPECT_EQ(live.role(14).sensor, 1u);
+    EXPECT_EQ(live.role(14).kind, ChannelRole::Metrics);
     const json::Value description = json::parse(live.rig_json(), "rig");
     EXPECT_EQ(description.find("sensors")->array()[1].find("token")->string(), "sensor_7up");
     // Advertised as Foxglove expects: every field, schemas as text.
@@ -141,6 +152,41 @@ TEST(ServeChannels, ImagesAreRos2ImagesInCdr) {
     EXPECT_EQ(r.num<std::uint32_t>(), 9u);
     EXPECT_EQ(r.octets(), std::string_view(reinterpret_cast<const char*>(rgb), sizeof rgb));
     EXPECT_FALSE(r.failed());
+}
+
+TEST(ServeChannels, TheFusedPngIsTheOutPngByteForByte) {
+    Image fused(3, 5, 3);
+    for (std::size_t i = 0; i < fused.data.size(); ++i) fused.data[i] = float(i) / 40.0f - 0.1f;  // clamped at both ends
+    const std::string cdr = png_cdr("S", std::chrono::system_clock::time_point{}, fused);
+    io::cdr::Reader r(cdr);
+    r.num<std::int32_t>();
+    r.num<std::uint32_t>();
+    r.str();
+    EXPECT_EQ(r.str(), "png");
+    const std::string_view png = r.octets();
+    const Image back = io::decode_png(std::vector<unsigned char>(png.begin(), png.end()), "S");
+    const std::vector<unsigned char> want = io::to_8bit(fused);
+    ASSERT_EQ(back.data.size(), want.size());
+    for (std::size_t i = 0; i < want.size(); ++i) EXPECT_EQ(std::lround(back.data[i] * 255.0f), want[i]) << i;
+}
+
+TEST(ServeChannels, CompressedImagesAreJpegsOfTheFrame) {
+    std::vector<std::uint8_t> rgb(16 * 8 * 3);
+    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = std::uint8_t(i * 7);
+    const std::string cdr = jpeg_cdr("S", std::chrono::system_clock::time_point{}, 8, 16, rgb.data());
+    io::cdr::Reader r(cdr);
+    r.num<std::int32_t>();
+    r.num<std::uint32_t>();
+    EXPECT_EQ(r.str(), "S");
+    EXPECT_EQ(r.str(), "jpeg");
+    const std::string_view jpeg = r.octets();
+    EXPECT_FALSE(r.failed());
+    ASSERT_GT(jpeg.size(), 4u);
+    EXPECT_EQ(std::uint8_t(jpeg[0]), 0xFF);  // SOI
+    EXPECT_EQ(std::uint8_t(jpeg[1]), 0xD8);
+    std::vector<std::uint8_t> back;
+    std::string why;
+    EXPECT_TRUE(mjpeg_to_rgb({reinterpret_cast<const std::uint8_t*>(jpeg.data()), jpeg.size()}, 16, 8, back, why)) << why;
 }
 
 TEST(ServeAddressOption, PortOrAddressAndPort) {

@@ -154,9 +154,13 @@ bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
     return true;
 }
 
-bool write_rows(png_structp png, png_infop info, std::FILE* out, const PngInfo* shape, png_bytepp rows) {
+bool write_rows(png_structp png, png_infop info, std::FILE* out, const PngInfo* shape, png_bytepp rows, bool fast) {
     if (setjmp(png_jmpbuf(png))) return false;
     png_init_io(png, out);
+    if (fast) {
+        png_set_compression_level(png, 1);
+        png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+    }
     int color_type = shape->channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB;
     png_set_IHDR(png, info, shape->width, shape->height, 8, color_type, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -307,7 +311,7 @@ ImageHeader read_png_header(InputFile& file) {
 
 Image read_png(InputFile& file) { return PngReader(nullptr, file.size(), &file, file.path()).image(); }
 
-void write_png(std::FILE* out, const Image& image, const std::string& path) {
+void write_png(std::FILE* out, const Image& image, const std::string& path, PngSpeed speed) {
     std::vector<unsigned char> pixels = to_8bit(image);
     PngInfo shape;
     shape.width = png_uint_32(image.width);
@@ -317,7 +321,7 @@ void write_png(std::FILE* out, const Image& image, const std::string& path) {
         row_pointers(pixels.data(), std::size_t(image.height), std::size_t(image.width) * image.channels);
     PngState state;
     PngHandle handle(false, &state);
-    if (!write_rows(handle.png(), handle.info(), out, &shape, rows.data()))
+    if (!write_rows(handle.png(), handle.info(), out, &shape, rows.data(), speed == PngSpeed::Fast))
         fail(ErrorKind::Io, path, std::string("cannot write PNG: ") + state.message);
 }
 

@@ -25,9 +25,14 @@ Image decode_png(const std::vector<unsigned char>& file, const std::string& path
 ImageHeader read_png_header(InputFile& file);
 Image read_png(InputFile& file);
 
+// How hard the writer compresses: Small (zlib's default level, adaptive
+// filters) for files, Fast (level 1, one filter: a few times quicker, a
+// little larger) for the live server's images, written every cycle.
+enum class PngSpeed { Small, Fast };
+
 // Writes image (C = 1 or 3, finite) as an 8-bit gray or RGB PNG: to_8bit's
-// samples. Throws Error naming path.
-void write_png(std::FILE* out, const Image& image, const std::string& path);
+// samples, the same whatever the speed. Throws Error naming path.
+void write_png(std::FILE* out, const Image& image, const std::string& path, PngSpeed speed = PngSpeed::Small);
 
 // An image's samples as 8-bit PNGs (and rgb8 ROS images) hold them: each
 // value clamped to [0, 1] and rounded, round(v * 255).

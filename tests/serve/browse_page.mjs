@@ -54,7 +54,7 @@ try {
   for (let tries = 0; tries < 100; ++tries) {
     await page.evaluate(() => window.vkfuseLive.freeze());
     canvases = await page.evaluate(() => window.vkfuseLive.canvases());
-    if (canvases.every((c) => !c.topic.endsWith("/fused") || c.cycle >= 0)) break;
+    if (canvases.every((c) => !c.topic.includes("/fused") || c.cycle >= 0)) break;
     await page.evaluate(() => window.vkfuseLive.unfreeze());
     await new Promise((r) => setTimeout(r, 150));
   }

@@ -77,12 +77,13 @@ async def protocol_checks(port, results):
     if ws.subprotocol != SUBPROTOCOL:
         fail(f"the server answered subprotocol {ws.subprotocol!r}")
     channels = await handshake(ws)
-    want = SENSORS * 4 + 2  # fused, two settings, metrics per sensor; status; rig
+    want = SENSORS * 7 + 2  # per sensor fused raw and PNG, two settings raw and JPEG, metrics; status; rig
     if len(channels) != want:
         fail(f"{len(channels)} channels advertised, expected {want}: {sorted(channels)}")
     for topic, c in channels.items():
-        if topic.endswith("/fused") or "/lit/" in topic:
-            if (c["encoding"], c["schemaName"], c["schemaEncoding"]) != ("cdr", "sensor_msgs/msg/Image", "ros2msg"):
+        if "/fused" in topic or "/lit/" in topic:
+            schema = "sensor_msgs/msg/CompressedImage" if topic.endswith("/compressed") else "sensor_msgs/msg/Image"
+            if (c["encoding"], c["schemaName"], c["schemaEncoding"]) != ("cdr", schema, "ros2msg"):
                 fail(f"{topic}: {c['encoding']} {c['schemaName']} {c['schemaEncoding']}")
             if not c["schema"].startswith("std_msgs/Header header"):
                 fail(f"{topic}: schema {c['schema'][:40]!r}")
@@ -319,7 +320,7 @@ async def main(vkfuse, node_work, work):
     for c in page["canvases"]:
         rgba = np.frombuffer(base64.b64decode(c["rgba"]), np.uint8).reshape(c["height"], c["width"], 4)
         serial = c["topic"].split("/")[2].replace("_", "-")  # SIM_0001: SIM-0001's token
-        if c["topic"].endswith("/fused"):
+        if c["topic"].endswith("/fused/compressed"):
             if c["cycle"] < 0:
                 fail(f"{c['topic']}: the page did not know the drawn image's cycle")
             png = cv2.imread(os.path.join(out, "fused", serial, f"{c['cycle']:06d}.png"), cv2.IMREAD_COLOR)

@@ -129,14 +129,18 @@ Session prepare(const Args& args) {
 
 RigConfig rig_config(Session& s) {
     RigConfig cfg = rig_config(static_cast<const RigSession&>(s));
-    // The recorder is made once the rig has accepted the configuration (no
-    // directory for a run that cannot start); the callback finds it then.
-    if (s.options.record || s.options.publish_frames)
-        cfg.on_background = [&rec = s.recorder, &pub = s.publisher](std::size_t i, const Illumination& setting,
-                                                                  const std::vector<Frame>& frames) {
+    // The recorder and the output are made once the rig has accepted the
+    // configuration (no directory for a run that cannot start); the callback
+    // finds them then.
+    std::vector<std::string> serials;
+    for (const RigSensor& r : s.sensors.rig) serials.push_back(r.sensor->info().serial);
+    if (s.options.record || s.options.publish_frames || s.options.out)
+        cfg.on_background = [&rec = s.recorder, &pub = s.publisher, &out = s.output, serials](
+                                std::size_t i, const Illumination& setting, const std::vector<Frame>& frames) {
             if (rec)
                 for (const Frame& f : frames) rec->add_frame(int(i), "nothing", true, f, setting);
             if (pub) pub->publish_background(i, setting, frames);
+            if (out) out->add_background(serials.at(i), setting, frames);
         };
     return cfg;
 }
@@ -146,9 +150,11 @@ RigConfig rig_config(Session& s) {
 void open_outputs(Session& s) {
     const RunOptions& o = s.options;
     if (s.out_dir)
-        s.output = std::make_unique<RunOutput>(s.out_dir->path(), o.object,
-                                               static_slot(o.sequence, s.sensors.rig.front().sensor->info().leds),
-                                               o.skip.policy != SkipPolicy::Off);
+        s.output = std::make_unique<RunOutput>(
+            s.out_dir->path(), o.object,
+            RunOutputLabels{o.sequence, static_slot(o.sequence, s.sensors.rig.front().sensor->info().leds),
+                            method_label(o.fusion), o.metrics},
+            o.skip.policy != SkipPolicy::Off);
     if (!s.record) return;
     s.recorder = std::make_unique<DatasetWriter>(s.record->path(), "vkfuse run");
     for (const RigSensor& r : s.sensors.rig) s.recorder->add_sensor(r.sensor->info());

@@ -11,9 +11,11 @@
 #include <filesystem>
 
 #include "io/path_component.hpp"
+#include "run/caption.hpp"
 #include "standard_output.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/core/io.hpp"
+#include "vkfuse/core/reference.hpp"
 
 namespace vkfuse::cli {
 namespace {
@@ -56,9 +58,11 @@ std::string cycle_name(std::uint64_t cycle) {
     return name;
 }
 
+constexpr int kSideBySideGap = 8;
+
 // static frame (8-bit) | fused frame, 8 grey columns apart.
 Image side_by_side(const Frame& still, const Image& fused) {
-    constexpr int kGap = 8;
+    constexpr int kGap = kSideBySideGap;
     Image out(still.height, still.width * 2 + kGap, 3);
     std::fill(out.data.begin(), out.data.end(), 0.5f);
     for (int y = 0; y < still.height; ++y)
@@ -125,10 +129,10 @@ bool is_run_output_entry(const std::string& name) {
 // Fused frames waiting for the PNG writer: a few cycles of 16 VGA sensors.
 constexpr std::size_t kMaxPendingImageBytes = std::size_t(256) << 20;
 
-RunOutput::RunOutput(std::string directory, std::string object, std::size_t slot, bool skipping)
+RunOutput::RunOutput(std::string directory, std::string object, RunOutputLabels labels, bool skipping)
     : directory_(std::move(directory)),
       object_(std::move(object)),
-      static_slot_(slot),
+      labels_(std::move(labels)),
       skipping_(skipping),
       fused_pngs_(kMaxPendingImageBytes) {
     io::check_plain_component(object_, "object");
@@ -151,8 +155,49 @@ void RunOutput::write(const CycleResult& cycle) {
         if (s.watch) continue;  // one setting only: the side-by-side picture shows a whole cycle
         auto it = std::find_if(last_.begin(), last_.end(), [&](const auto& e) { return e.first == s.serial; });
         if (it == last_.end()) it = last_.insert(last_.end(), {s.serial, {}});
-        it->second = {s.frames, *s.fused};
+        it->second = {s.frames, *s.fused, s.metrics, cycle.cycle};
     }
+}
+
+void RunOutput::add_background(const std::string& serial, const Illumination& setting, const std::vector<Frame>& frames) {
+    if (frames.empty() || labels_.static_slot >= labels_.sequence.size() || setting != labels_.sequence[labels_.static_slot])
+        return;
+    ImageD mean(frames.front().height, frames.front().width, 3);
+    for (const Frame& f : frames)
+        for (std::size_t i = 0; i < mean.data.size() && i < f.pixels.size(); ++i)
+            mean.data[i] += double(f.pixels[i]) / 255.0 / double(frames.size());
+    std::lock_guard lock(backgrounds_mutex_);
+    static_backgrounds_[serial] = std::move(mean);
+}
+
+// [static | fused] under three lines: what each side is, the fused image's
+// metrics over the static frame's (the paper's gains; above 1: better), and
+// whose picture it is.
+Image RunOutput::captioned_side_by_side(const std::string& serial, const Last& last) const {
+    const Frame& still = last.frames.at(labels_.static_slot);
+    ImageD frame(still.height, still.width, 3);
+    for (std::size_t i = 0; i < frame.data.size(); ++i) frame.data[i] = double(still.pixels[i]) / 255.0;
+    const auto bg = static_backgrounds_.find(serial);
+    const bool with_bg = bg != static_backgrounds_.end() && bg->second.same_shape(frame) && last.metrics.background_diff;
+    const Metrics base = metrics_reference(frame, with_bg ? &bg->second : nullptr, labels_.metrics);
+    std::string gains;
+    const auto gain = [&](const char* name, double fused, double still_value) {
+        if (std::isnan(fused) || std::isnan(still_value) || still_value <= 0) return;
+        char text[64];
+        std::snprintf(text, sizeof text, "%s%s x%.3f", gains.empty() ? "" : "   ", name, fused / still_value);
+        gains += text;
+    };
+    gain("sharpness", last.metrics.sharpness, base.sharpness);
+    gain("contrast", last.metrics.contrast, base.contrast);
+    if (with_bg && base.background_diff) gain("background diff", *last.metrics.background_diff, *base.background_diff);
+    const Image pair = side_by_side(still, last.fused);
+    const int scale = std::max(1, pair.width / 700);
+    const std::vector<CaptionLine> lines = {
+        {{"static " + labels_.sequence[labels_.static_slot].to_string(), 0},
+         {"fused " + to_string(labels_.sequence) + "  " + labels_.method, still.width + kSideBySideGap}},
+        {{"gains over static: " + (gains.empty() ? std::string("none measured") : gains), 0}},
+        {{object_ + "  " + serial + "  cycle " + std::to_string(last.cycle), 0}}};
+    return with_caption(pair, lines, scale);
 }
 
 void RunOutput::finish(const std::string& summary_json) {
@@ -162,8 +207,8 @@ void RunOutput::finish(const std::string& summary_json) {
         make_directory(dir);
         const std::string name = object_ + "_" + serial + ".png";
         io::check_plain_component(name, "side-by-side picture");
-        io::write_image((dir / name).string(),
-                        side_by_side(last.frames.at(static_slot_), last.fused));
+        std::lock_guard lock(backgrounds_mutex_);
+        io::write_image((dir / name).string(), captioned_side_by_side(serial, last));
     }
     write_text((fs::path(directory_) / kSummaryName).string(), summary_json + "\n");
     const int fd = metrics_fd_;

@@ -1,15 +1,21 @@
 // run_output.hpp - what `vkfuse run --out DIR` writes:
 //   DIR/metrics.jsonl                       one JSON object per sensor per cycle
 //   DIR/fused/<serial>/<cycle>.png          every fused frame (8-bit, clamped)
-//   DIR/side_by_side/<object>_<serial>.png  the last static frame | the last fused frame
+//   DIR/side_by_side/<object>_<serial>.png  the last static frame | the last fused frame, under a
+//                                           caption: the static setting, the fused sequence and
+//                                           method, the metrics' gains over the static frame
 //   DIR/summary.json                        the summary `vkfuse run` prints
 // DIR is a StagedDirectory's fresh staging directory: these files are new,
 // and appear under the user's --out name only when the run succeeds.
 #pragma once
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "run/image_write_queue.hpp"
+#include "vkfuse/core/image.hpp"
+#include "vkfuse/core/metrics.hpp"
 #include "vkfuse/rig/rig.hpp"
 #include "vkfuse/sensor/illumination.hpp"
 
@@ -27,12 +33,20 @@ std::size_t static_slot(const IlluminationSequence& sequence, const LedLayout& l
 // Whether name is a top-level entry RunOutput writes (what --replace may replace).
 bool is_run_output_entry(const std::string& name);
 
+// What the side-by-side pictures' captions name.
+struct RunOutputLabels {
+    IlluminationSequence sequence;
+    std::size_t static_slot = 0;  // static_slot(sequence, leds)
+    std::string method;           // method_label()
+    MetricSet metrics = MetricSet::all();
+};
+
 class RunOutput {
 public:
     // directory must exist and be empty (a staging directory). object and the
     // serials become file names and must be plain components (checked:
     // Error(Format) otherwise, whatever a replayed dataset says).
-    RunOutput(std::string directory, std::string object, std::size_t static_slot, bool skipping);
+    RunOutput(std::string directory, std::string object, RunOutputLabels labels, bool skipping);
     ~RunOutput();
     RunOutput(const RunOutput&) = delete;
     RunOutput& operator=(const RunOutput&) = delete;
@@ -40,6 +54,10 @@ public:
     // The cycle's metric lines now; its fused PNGs on a writer thread (an
     // error there fails a later write() or finish()).
     void write(const CycleResult& cycle);
+    // A sensor's background frames of one setting (RigConfig::on_background;
+    // sensors' threads may call it at once): the static setting's mean is
+    // what the static frame's difference with background is measured against.
+    void add_background(const std::string& serial, const Illumination& setting, const std::vector<Frame>& frames);
     // Side-by-side pictures and the summary; closes metrics.jsonl.
     void finish(const std::string& summary_json);
 
@@ -47,12 +65,18 @@ private:
     struct Last {
         std::vector<Frame> frames;
         Image fused;
+        Metrics metrics;
+        std::uint64_t cycle = 0;
     };
+    Image captioned_side_by_side(const std::string& serial, const Last& last) const;
+
     std::string directory_, object_;
-    std::size_t static_slot_;
+    RunOutputLabels labels_;
     bool skipping_;
     int metrics_fd_ = -1;
     std::vector<std::pair<std::string, Last>> last_;  // by serial, in sensor order
+    std::mutex backgrounds_mutex_;
+    std::map<std::string, ImageD> static_backgrounds_;  // by serial
     ImageWriteQueue fused_pngs_;  // last: stopped before anything it writes about goes
 };
 

@@ -3,7 +3,12 @@
 //
 //   per sensor <token> (the serial as a ROS 2 name token, as on ROS 2's wire)
 //     /vkfuse/<token>/fused               sensor_msgs/msg/Image (cdr, rgb8: the --out PNG's samples)
+//     /vkfuse/<token>/fused/compressed    sensor_msgs/msg/CompressedImage (cdr, png: the --out PNG itself)
 //     /vkfuse/<token>/lit/led_<r>_<g>_<b> sensor_msgs/msg/Image (cdr, rgb8), one per setting of the sequence
+//     .../led_<r>_<g>_<b>/compressed      sensor_msgs/msg/CompressedImage (cdr, jpeg): the same, a
+//                                         tenth of the bytes (image_transport's name for it)
+//   The page takes the compressed ones: what a browser on the rig's own host
+//   costs the rig is mostly the bytes it receives.
 //     /vkfuse/<token>/metrics             vkfuse.Metrics (json): the cycle's metrics.jsonl line
 //   /vkfuse/status                        vkfuse.RigStatus (json): rates, fractions, late sensors, errors
 //   /vkfuse/rig                           vkfuse.Rig (json): sensors, sequence, method, static setting
@@ -31,7 +36,7 @@ struct LiveRig {
 };
 
 struct ChannelRole {
-    enum Kind { Fused, Lit, Metrics, Status, Rig } kind = Status;
+    enum Kind { Fused, FusedPng, Lit, LitJpeg, Metrics, Status, Rig } kind = Status;
     std::size_t sensor = 0, slot = 0;  // Fused, Lit, Metrics: the sensor; Lit: the sequence slot
 };
 
@@ -63,7 +68,7 @@ struct LiveCycle {
         std::string error;
         std::string metrics_line;           // empty: not wanted
         std::vector<std::vector<std::uint8_t>> lit;  // per slot; empty: not wanted or not captured
-        std::vector<float> fused;           // as fused; empty: not wanted or not fused
+        Image fused;                        // as fused; empty: not wanted or not fused
         int height = 0, width = 0;
         bool idle = false, reused = false, watch = false;
         double fused_fraction = 0;
@@ -74,10 +79,13 @@ struct LiveCycle {
 // sensor_msgs/msg/Image, CDR, rgb8: frame_id the serial, stamp the time.
 std::string image_cdr(const std::string& frame_id, std::chrono::system_clock::time_point at, int height, int width,
                       const std::uint8_t* rgb);
-// The same of a fused image's float samples, as its --out PNG holds them
-// (round(clamp(v, 0, 1) * 255)).
-std::string image_cdr(const std::string& frame_id, std::chrono::system_clock::time_point at, int height, int width,
-                      const float* samples);
+// sensor_msgs/msg/CompressedImage, CDR, format jpeg.
+std::string jpeg_cdr(const std::string& frame_id, std::chrono::system_clock::time_point at, int height, int width,
+                     const std::uint8_t* rgb);
+// The same of a fused image, as its --out PNG holds it (io::to_8bit).
+std::string image_cdr(const std::string& frame_id, std::chrono::system_clock::time_point at, const Image& fused);
+// sensor_msgs/msg/CompressedImage, CDR, format png: the fused image's --out PNG, byte for byte.
+std::string png_cdr(const std::string& frame_id, std::chrono::system_clock::time_point at, const Image& fused);
 
 // The rig's status over a sliding window of cycles (the server's thread only).
 class RigStatus {

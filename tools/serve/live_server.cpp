@@ -329,11 +329,16 @@ void LiveServer::Impl::take_cycle() {
             const std::string& serial = s.serial;
             if (role.kind == ChannelRole::Metrics && !s.metrics_line.empty())
                 payload = std::make_shared<const std::string>(s.metrics_line);
-            else if (role.kind == ChannelRole::Fused && !s.fused.empty())
-                payload = std::make_shared<const std::string>(image_cdr(serial, cycle->at, s.height, s.width, s.fused.data()));
+            else if (role.kind == ChannelRole::Fused && s.fused.size() > 0)
+                payload = std::make_shared<const std::string>(image_cdr(serial, cycle->at, s.fused));
+            else if (role.kind == ChannelRole::FusedPng && s.fused.size() > 0)
+                payload = std::make_shared<const std::string>(png_cdr(serial, cycle->at, s.fused));
             else if (role.kind == ChannelRole::Lit && role.slot < s.lit.size() && !s.lit[role.slot].empty())
                 payload = std::make_shared<const std::string>(
                     image_cdr(serial, cycle->at, s.height, s.width, s.lit[role.slot].data()));
+            else if (role.kind == ChannelRole::LitJpeg && role.slot < s.lit.size() && !s.lit[role.slot].empty())
+                payload = std::make_shared<const std::string>(
+                    jpeg_cdr(serial, cycle->at, s.height, s.width, s.lit[role.slot].data()));
         }
         if (!payload) continue;
         last[c.id - 1] = payload;
@@ -373,7 +378,7 @@ LiveServer::LiveServer(const ServeAddress& address, LiveChannels channels) : imp
     impl_->accept();
     impl_->thread = std::thread([impl = impl_.get()] {
         // The rig's threads come first: a page is worth less than a cycle.
-        ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), 10);
+        ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), 5);
         impl->io.run();
     });
 }
@@ -399,12 +404,21 @@ ServerCounts LiveServer::counts() const {
 void LiveServer::publish(const CycleResult& cycle) {
     Impl& s = *impl_;
     const LiveChannels& ch = s.channels;
+    // What some client subscribed to, by sensor: only that is copied.
+    const std::size_t settings = ch.rig().sequence.size();
+    std::vector<char> metrics(cycle.sensors.size()), fused(cycle.sensors.size()), lit(cycle.sensors.size() * settings);
+    for (const Channel& c : ch.channels()) {
+        const ChannelRole& role = ch.role(c.id);
+        if (!s.wanted(c.id) || role.sensor >= cycle.sensors.size()) continue;
+        if (role.kind == ChannelRole::Metrics) metrics[role.sensor] = 1;
+        if (role.kind == ChannelRole::Fused || role.kind == ChannelRole::FusedPng) fused[role.sensor] = 1;
+        if (role.kind == ChannelRole::Lit || role.kind == ChannelRole::LitJpeg) lit[role.sensor * settings + role.slot] = 1;
+    }
     auto live = std::make_shared<LiveCycle>();
     live->cycle = cycle.cycle;
     live->at = std::chrono::system_clock::now();
     live->capture_wait_s = cycle.capture_wait_s;
     live->fuse_s = cycle.fuse_s;
-    const std::size_t per_sensor = ch.rig().sequence.size() + 2;  // fused, lit..., metrics
     for (std::size_t i = 0; i < cycle.sensors.size(); ++i) {
         const SensorCycle& c = cycle.sensors[i];
         LiveCycle::Sensor out;
@@ -415,18 +429,12 @@ void LiveServer::publish(const CycleResult& cycle) {
         out.reused = c.skip.reused;
         out.watch = c.watch;
         out.fused_fraction = c.skip.fused_fraction;
-        const std::uint32_t base = std::uint32_t(i * per_sensor + 1);
-        if (s.wanted(base + std::uint32_t(per_sensor) - 1))
-            out.metrics_line = metrics_line(cycle, c, ch.rig().object, ch.rig().skipping);
+        if (metrics[i]) out.metrics_line = metrics_line(cycle, c, ch.rig().object, ch.rig().skipping);
         if (c.status == SensorStatus::Ok) {
-            if (c.fused && s.wanted(base)) {
-                out.height = c.fused->height;
-                out.width = c.fused->width;
-                out.fused = c.fused->data;  // rounded to 8 bits on the server's thread
-            }
-            out.lit.resize(ch.rig().sequence.size());
-            for (std::size_t k = 0; k < c.frames.size() && k < out.lit.size(); ++k)
-                if (s.wanted(base + 1 + std::uint32_t(k))) {
+            if (c.fused && fused[i]) out.fused = *c.fused;  // rounded and encoded on the server's thread
+            out.lit.resize(settings);
+            for (std::size_t k = 0; k < c.frames.size() && k < settings; ++k)
+                if (lit[i * settings + k]) {
                     out.lit[k] = c.frames[k].pixels;
                     out.height = c.frames[k].height;
                     out.width = c.frames[k].width;

@@ -44,21 +44,20 @@ function el(tag, attrs = {}, ...children) {
   return e;
 }
 
-// sensor_msgs/msg/Image in CDR (little endian, after the 4-byte encapsulation header).
-function decodeImage(view) {
+// sensor_msgs/msg/CompressedImage (png or jpeg) in CDR, decoded by the browser
+// (colour management off: a PNG's samples reach the canvas as they are).
+function decodeCompressed(view) {
   let at = 4;
-  const align = (n) => { at += (n - ((at - 4) % n)) % n; };
-  const u32 = () => { align(4); const v = view.getUint32(at, true); at += 4; return v; };
-  const str = () => { const n = u32(); const s = new TextDecoder().decode(new Uint8Array(view.buffer, view.byteOffset + at, Math.max(n - 1, 0))); at += n; return s; };
+  const u32 = () => { at += (4 - ((at - 4) % 4)) % 4; const v = view.getUint32(at, true); at += 4; return v; };
   u32(); u32();  // stamp
-  const frameId = str();
-  const height = u32(), width = u32();
-  const encoding = str();
-  at += 1;  // is_bigendian
-  const step = u32();
+  const skip = () => { const n = u32(); at += n; };  // a string (after u32() has moved past its length)
+  skip();        // frame_id
+  const formatLength = u32();
+  const format = new TextDecoder().decode(new Uint8Array(view.buffer, view.byteOffset + at, Math.max(formatLength - 1, 0)));
+  at += formatLength;
   const n = u32();
-  if (encoding !== "rgb8" || step !== width * 3 || n !== step * height) throw new Error(`unexpected image ${encoding} ${width}x${height}`);
-  return { frameId, width, height, data: new Uint8Array(view.buffer, view.byteOffset + at, n) };
+  const blob = new Blob([new Uint8Array(view.buffer, view.byteOffset + at, n)], { type: `image/${format}` });
+  return createImageBitmap(blob, { colorSpaceConversion: "none", premultiplyAlpha: "none" });
 }
 
 function sensorCard(token, info) {
@@ -89,7 +88,7 @@ function figure(sensor, topic, caption, kind) {
 function setupChannels(channels) {
   const rig = live.rig;
   for (const c of channels) {
-    const m = c.topic.match(/^\/vkfuse\/([A-Za-z0-9_]+)\/(fused|metrics|lit\/(led(?:_\d+)+))$/);
+    const m = c.topic.match(/^\/vkfuse\/([A-Za-z0-9_]+)\/(fused\/compressed|metrics|lit\/(led(?:_\d+)+)\/compressed)$/);
     const ch = { topic: c.topic, kind: m ? m[2].split("/")[0] : c.topic.slice(8), token: m ? m[1] : null };
     live.channels.set(c.id, ch);
     if (!m || !rig) continue;
@@ -109,8 +108,13 @@ function setupChannels(channels) {
 // a burst of messages costs one draw, and a hidden tab none.
 const toDraw = new Map();  // topic -> [channel, stamp, image]
 function draw(ch, stamp, image) {
-  if (live.frozen) return;
+  if (live.frozen) {
+    image.close();
+    return;
+  }
   if (!toDraw.size) requestAnimationFrame(flush);
+  const replaced = toDraw.get(ch.topic);
+  if (replaced) replaced[2].close();
   toDraw.set(ch.topic, [ch, stamp, image]);
 }
 
@@ -125,12 +129,8 @@ function paint(ch, stamp, image) {
   const f = sensor.figures.get(ch.topic);
   const c = f.canvas;
   if (c.width !== image.width || c.height !== image.height) { c.width = image.width; c.height = image.height; }
-  const ctx = c.getContext("2d");
-  const rgba = new ImageData(image.width, image.height);
-  const words = new Uint32Array(rgba.data.buffer);  // little endian: 0xAABBGGRR
-  const src = image.data;
-  for (let i = 0, j = 0; j < words.length; i += 3, j++) words[j] = 0xff000000 | (src[i + 2] << 16) | (src[i + 1] << 8) | src[i];
-  ctx.putImageData(rgba, 0, 0);
+  c.getContext("2d").drawImage(image, 0, 0);
+  image.close();
   c.dataset.stamp = stamp;
   // Text changed only when it differs: every change costs the page a layout.
   const cycle = live.cycles.get(stamp);
@@ -206,8 +206,13 @@ function onMetrics(stamp, m) {
   }
 }
 
+let statusShown = 0;
 function onStatus(s) {
   live.statusMessages++;
+  // Four times a second is as fast as anyone reads it; each update costs a layout.
+  const now = performance.now();
+  if (now - statusShown < 250) return;
+  statusShown = now;
   const pct = (x) => `${(100 * x).toFixed(0)} %`;
   const late = s.sensors.filter((x) => x.status !== "ok").length;
   const text = `cycle ${s.cycle} · ${s.cycles_per_s.toFixed(1)} cycles/s · fused ${pct(s.fused_fraction)} · ` +
@@ -237,7 +242,12 @@ function connect() {
         pending = msg.channels;
         // The rig description first: it names the sensors and the sequence.
         const rigChannel = msg.channels.find((c) => c.topic === "/vkfuse/rig");
-        const subs = msg.channels.map((c, i) => ({ id: i + 1, channelId: c.id }));
+        // Every topic but the raw images: their twins (/compressed: the
+        // fused image's PNG, lossless; each frame's JPEG) carry what a person
+        // sees in far fewer bytes, which is most of what a browser on the
+        // rig's own host costs it.
+        const wanted = msg.channels.filter((c) => !/\/(fused|lit\/led(_\d+)+)$/.test(c.topic));
+        const subs = wanted.map((c, i) => ({ id: i + 1, channelId: c.id }));
         subs.forEach((s) => live.subscriptions.set(s.id, s.channelId));
         for (const c of msg.channels) live.channels.set(c.id, { topic: c.topic, kind: c.topic === "/vkfuse/rig" ? "rig" : null });
         ws.send(JSON.stringify({ op: "subscribe", subscriptions: subs }));
@@ -261,11 +271,11 @@ function connect() {
       return;
     }
     if (!live.rig) return;
-    if (ch.kind === "fused" || ch.kind === "lit") draw(ch, stamp, decodeImage(payload));
+    if (ch.kind === "fused" || ch.kind === "lit") decodeCompressed(payload).then((bitmap) => draw(ch, stamp, bitmap));
     else if (ch.kind === "metrics") onMetrics(stamp, JSON.parse(new TextDecoder().decode(payload)));
     else if (ch.kind === "status") onStatus(JSON.parse(new TextDecoder().decode(payload)));
   };
 }
 
-setInterval(() => { if (live.rig && !live.frozen) drawPlots(); }, 500);
+setInterval(() => { if (live.rig && !live.frozen) drawPlots(); }, 1000);
 connect();
