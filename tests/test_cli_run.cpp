@@ -19,14 +19,6 @@ namespace fs = std::filesystem;
 
 bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
 
-std::vector<std::string> files_under(const std::string& dir) {
-    std::vector<std::string> out;
-    for (const auto& e : fs::recursive_directory_iterator(dir))
-        if (e.is_regular_file()) out.push_back(fs::relative(e.path(), dir).string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
 TEST(CliRun, SimulatedCoinWithOutputs) {
     TempDir tmp;
     const CliResult r =

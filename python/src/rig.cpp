@@ -42,6 +42,7 @@ public:
         : dataset_(std::make_shared<const Dataset>(read_dataset(directory))) {}
 
     std::string source() const { return dataset_->source; }
+    std::string incomplete() const { return dataset_->incomplete; }
     std::vector<std::string> serials() const {
         std::vector<std::string> out;
         for (const auto& s : dataset_->sensors) out.push_back(s.info.serial);
@@ -186,9 +187,11 @@ private:
 }  // namespace
 
 void def_rig(py::module_& m) {
-    py::class_<PyDataset>(m, "Dataset", "A recorded dataset (vkfuse sim, vkfuse run --record): its sensors, objects and frames.")
+    py::class_<PyDataset>(m, "Dataset", "A recorded dataset (vkfuse sim, vkfuse run --record; a folder or an MCAP file): its sensors, objects and frames.")
         .def(py::init<const std::string&>(), py::arg("directory"))
         .def_property_readonly("source", &PyDataset::source)
+        .def_property_readonly("incomplete", &PyDataset::incomplete,
+                               "A recording cut short: where reading stopped and why; empty when whole.")
         .def_property_readonly("sensors", &PyDataset::serials, "The recorded sensors' serials.")
         .def("objects", &PyDataset::objects, "Objects with frames, in recording order (backgrounds excluded).")
         .def("take_length", &PyDataset::take_length, py::arg("serial"), py::arg("object"))

@@ -10,6 +10,7 @@ one table.
 from __future__ import annotations
 
 import inspect
+import warnings
 from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from . import _vkfuse
@@ -164,11 +165,21 @@ Rig.__init__.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
 
 
 class Dataset:
-    """A recorded dataset (vkfuse sim, vkfuse run --record): its sensors,
-    objects and frames, each frame read from disk when reached."""
+    """A recorded dataset (vkfuse sim, vkfuse run --record): a folder or an
+    MCAP file (a path ending in .mcap); its sensors, objects and frames, each
+    frame read from disk when reached. A recording cut short gives the whole
+    cycles before the cut, with a RuntimeWarning saying where it stopped
+    (also in `incomplete`)."""
 
     def __init__(self, directory: str) -> None:
         self._dataset = _vkfuse.Dataset(directory)
+        if self._dataset.incomplete:
+            warnings.warn(self._dataset.incomplete, RuntimeWarning, stacklevel=2)
+
+    @property
+    def incomplete(self) -> str:
+        """Where reading a cut recording stopped, and why; "" when whole."""
+        return self._dataset.incomplete
 
     @property
     def source(self) -> str:

@@ -251,6 +251,24 @@ def test_a_dataset_gives_its_frames_as_arrays(recorded):
         vkfuse.Dataset(str(recorded / "missing"))
 
 
+def test_a_recording_as_mcap_gives_the_same_frames_and_a_cut_one_warns(recorded, tmp_path):
+    cli = os.environ["VKFUSE_CLI"]
+    mcap = tmp_path / "coin.mcap"
+    subprocess.run([cli, "convert", str(recorded), str(mcap)], check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    folder, whole = vkfuse.Dataset(str(recorded)), vkfuse.Dataset(str(mcap))
+    assert whole.incomplete == "" and whole.sensors == folder.sensors and whole.objects() == folder.objects()
+    serial = folder.sensors[0]
+    for a, b in zip(folder.frames(serial, "coin-heads"), whole.frames(serial, "coin-heads")):
+        assert a["illumination"] == b["illumination"] and a["index"] == b["index"]
+        assert np.array_equal(a["pixels"], b["pixels"])
+    cut = tmp_path / "cut.mcap"
+    cut.write_bytes(mcap.read_bytes()[: mcap.stat().st_size * 3 // 4])
+    with pytest.warns(RuntimeWarning, match="cut.mcap: byte [0-9]+: .*using the [0-9]+ frames before it"):
+        partial = vkfuse.Dataset(str(cut))
+    assert partial.incomplete.startswith(str(cut))
+
+
 def test_a_rig_replays_a_dataset_frame_for_frame(recorded):
     ds = vkfuse.Dataset(str(recorded))
     lit = {f["illumination"]: f["pixels"] for f in ds.frames(ds.sensors[0], "coin-heads")}

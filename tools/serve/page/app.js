@@ -1,7 +1,8 @@
 // The live page: a Foxglove WebSocket client (subprotocol foxglove.websocket.v1)
-// of the server that serves it. It subscribes to every channel advertised and
-// draws each sensor's frames under each setting, its fused image and static
-// frame, a plot per metric over the last minutes, and the rig's status.
+// of the server that serves it. It subscribes to every channel advertised but
+// the raw images (it takes their /compressed twins) and draws each sensor's
+// frames under each setting, its fused image and static frame, a plot per
+// metric over the last minutes, and the rig's status.
 // window.vkfuseLive is what the tests read (tests/serve).
 "use strict";
 
@@ -10,7 +11,7 @@ const METRICS = [["sharpness", "Sharpness"], ["contrast", "RMS contrast"], ["bac
 const COLOURS = ["#4d7cfe", "#3fb950", "#d29922", "#f85149", "#a371f7", "#39c5cf", "#ff7b72", "#e3b341"];
 
 const live = {
-  channels: new Map(),   // channel id -> {topic, kind, sensor, slot}
+  channels: new Map(),   // channel id -> {topic, kind, token}
   subscriptions: new Map(),  // subscription id -> channel id
   sensors: new Map(),    // serial token -> sensor card
   cycles: new Map(),     // message time (ns, as text) -> cycle
