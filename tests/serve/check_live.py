@@ -202,7 +202,8 @@ async def stalled_client(port, pid, results):
             pass
     last = await cycle_now()
     results["stalled"] = {"cycles": last - first, "seconds": time.monotonic() - start, "rss_mib": rss}
-    if last - first < 20:
+    # Not a speed target (a busy host may be slow): only that the rig went on.
+    if last - first < 5:
         fail(f"with a client that stopped reading, the rig advanced {last - first} cycles in 8 s")
     if max(rss) > 1024:
         fail(f"with a client that stopped reading, memory reached {max(rss):.0f} MiB")
