@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "io/json_value.hpp"
+#include "io/mcap_records.hpp"
 #include "sensor/dataset_manifest.hpp"
 #include "sensor/dataset_mcap.hpp"
 #include "sensor/recording_messages.hpp"
@@ -14,14 +15,6 @@
 #include "vkfuse/version.hpp"
 
 namespace vkfuse::sensor {
-namespace {
-
-std::span<const std::uint8_t> bytes(const std::string& s) {
-    return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
-}
-
-}  // namespace
-
 McapDatasetWriter::McapDatasetWriter(const std::string& path, const std::string& compression) : path_(path) {
     const auto c = io::mcap::parse_compression_option(compression);
     if (!c) throw Error(ErrorKind::InvalidArgument, path + ": compression " + compression + " (expected zstd, lz4 or none)");
@@ -60,8 +53,10 @@ void McapDatasetWriter::start(const Dataset& dataset) {
                           {{std::string(recording::kManifestKey), json::write(manifest_json(described))}});
     const std::string frame_schema = ros2msg_schema(recording::kFrameType);
     const std::string metrics_schema = ros2msg_schema(recording::kMetricsType);
-    const auto frames = writer_->add_schema(std::string(recording::kFrameType), "ros2msg", bytes(frame_schema));
-    const auto metrics = writer_->add_schema(std::string(recording::kMetricsType), "ros2msg", bytes(metrics_schema));
+    const auto frames =
+        writer_->add_schema(std::string(recording::kFrameType), "ros2msg", io::mcap::bytes_of(frame_schema));
+    const auto metrics =
+        writer_->add_schema(std::string(recording::kMetricsType), "ros2msg", io::mcap::bytes_of(metrics_schema));
     // rosbag2 reads each channel's QoS from this key; empty: the defaults.
     const std::map<std::string, std::string> qos{{"offered_qos_profiles", ""}};
     for (const DatasetSensorRecord& s : dataset.sensors) {
@@ -83,7 +78,7 @@ void McapDatasetWriter::add_frame(const Dataset& dataset, int sensor, const std:
     const std::uint64_t t = recording::frame_time_ns(frame.timestamp);
     last_time_[i] = std::max(last_time_[i], t);
     writer_->write(frame_channels_[i], frame_sequences_[i]++, t, t,
-                   bytes(recording::encode_frame(serial, frame, lit_by, object, background, cycle)));
+                   io::mcap::bytes_of(recording::encode_frame(serial, frame, lit_by, object, background, cycle)));
 }
 
 void McapDatasetWriter::add_miss(const Dataset& dataset, int sensor, const DatasetMiss& miss) {
@@ -91,7 +86,7 @@ void McapDatasetWriter::add_miss(const Dataset& dataset, int sensor, const Datas
     const std::size_t i = std::size_t(sensor);
     if (i >= sensors_) throw Error(ErrorKind::InvalidArgument, path_ + ": sensor #" + std::to_string(sensor) + " added after the first frame");
     writer_->write(metrics_channels_[i], miss_sequences_[i]++, last_time_[i], last_time_[i],
-                   bytes(recording::encode_miss(dataset.sensors[i].info.serial, miss, last_time_[i])));
+                   io::mcap::bytes_of(recording::encode_miss(dataset.sensors[i].info.serial, miss, last_time_[i])));
 }
 
 void McapDatasetWriter::finish(const Dataset& dataset) {

@@ -33,6 +33,12 @@ const char* kRigSchema = R"({"title": "vkfuse.Rig", "type": "object",
  "properties": {"sensors": {"type": "array"}, "sequence": {"type": "array"}, "method": {"type": "string"},
   "object": {"type": "string"}, "static_slot": {"type": "integer"}}})";
 
+// A std_msgs/Header: the stamp, then the frame id.
+void header(io::cdr::Writer& w, const std::string& frame_id, std::chrono::system_clock::time_point at) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(at.time_since_epoch()).count();
+    w.num(std::int32_t(ns / 1'000'000'000)).num(std::uint32_t(ns % 1'000'000'000)).str(frame_id);
+}
+
 std::string setting_token(const Illumination& s) {
     std::string t = "led";
     for (int l : s.levels()) t += "_" + std::to_string(l);
@@ -92,9 +98,8 @@ std::string LiveChannels::rig_json() const {
 
 std::string image_cdr(const std::string& frame_id, std::chrono::system_clock::time_point at, int height, int width,
                       const std::uint8_t* rgb) {
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(at.time_since_epoch()).count();
     io::cdr::Writer w;
-    w.num(std::int32_t(ns / 1'000'000'000)).num(std::uint32_t(ns % 1'000'000'000)).str(frame_id);
+    header(w, frame_id, at);
     w.num(std::uint32_t(height)).num(std::uint32_t(width)).str("rgb8").num(std::uint8_t(0)).num(std::uint32_t(width) * 3u);
     w.octets(rgb, std::size_t(height) * std::size_t(width) * 3);
     return w.take();
@@ -102,11 +107,10 @@ std::string image_cdr(const std::string& frame_id, std::chrono::system_clock::ti
 
 std::string jpeg_cdr(const std::string& frame_id, std::chrono::system_clock::time_point at, int height, int width,
                      const std::uint8_t* rgb) {
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(at.time_since_epoch()).count();
     const std::vector<std::uint8_t> jpeg =
         rgb_to_jpeg({rgb, std::size_t(height) * std::size_t(width) * 3}, width, height, kJpegQuality);
     io::cdr::Writer w;
-    w.num(std::int32_t(ns / 1'000'000'000)).num(std::uint32_t(ns % 1'000'000'000)).str(frame_id);
+    header(w, frame_id, at);
     w.str("jpeg").octets(jpeg.data(), jpeg.size());
     return w.take();
 }
@@ -129,9 +133,8 @@ std::string png_cdr(const std::string& frame_id, std::chrono::system_clock::time
         throw;
     }
     std::fclose(memory);
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(at.time_since_epoch()).count();
     io::cdr::Writer w;
-    w.num(std::int32_t(ns / 1'000'000'000)).num(std::uint32_t(ns % 1'000'000'000)).str(frame_id);
+    header(w, frame_id, at);
     w.str("png").octets(data, size);
     std::free(data);
     return w.take();
