@@ -1,6 +1,7 @@
 // vkfuse run --skip: idle sensors skip fusion, the others are fused exactly
 // as with --skip off, and the metrics and summary say which was which.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdio>
@@ -154,6 +155,45 @@ TEST(CliRunSkip, SensorsTouchingNothingAreIdle) {
     EXPECT_NEAR(number_after(r.out, "idle_fraction"), 0.5, 1e-12) << r.out;
     EXPECT_NEAR(number_after(r.out, "fused_fraction"), 0.5, 1e-12) << r.out;
     EXPECT_EQ(number_after(r.out, "submits"), 3) << r.out;
+}
+
+// An idle sensor hands back the same fused image every cycle: its PNG is
+// encoded once, each later cycle's file is another name for it (same inode)
+// and its metrics line names that cycle; a pressed sensor's cycles differ and
+// are each encoded.
+TEST(CliRunSkip, AnUnchangedImageIsNamedNotEncodedAgain) {
+    TempDir tmp;
+    const CliResult r = run_cli({"run", "--virtual-clock", "--sensors", "2", "--pressing", "1", "--cycles", "4",
+                                 "--method", "brovey", "--skip", "idle", "--out", tmp.file("out")});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto inode = [&](const std::string& serial, int cycle) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/%06d.png", cycle);
+        struct stat st {};
+        EXPECT_EQ(::stat((tmp.file("out/fused/") + serial + name).c_str(), &st), 0) << serial << name;
+        return st.st_ino;
+    };
+    const std::string text = read_bytes(tmp.file("out/metrics.jsonl"));
+    std::size_t start = 0;
+    int lines = 0;
+    for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1, ++lines) {
+        const std::string l = text.substr(start, end - start);
+        const int cycle = int(number_after(l, "cycle"));
+        const bool named = l.find("\"image_from_cycle\"") != std::string::npos;
+        if (l.find("SIM-0002") != std::string::npos) {
+            ASSERT_EQ(named, cycle > 0) << l;
+            if (named) {
+                EXPECT_EQ(number_after(l, "image_from_cycle"), 0) << l;
+            }
+            EXPECT_EQ(inode("SIM-0002", cycle), inode("SIM-0002", 0)) << l;
+        } else {
+            EXPECT_FALSE(named) << l;
+            if (cycle > 0) {
+                EXPECT_NE(inode("SIM-0001", cycle), inode("SIM-0001", cycle - 1)) << l;
+            }
+        }
+    }
+    EXPECT_EQ(lines, 8);
 }
 
 // --skip static (and tiles, the default): a sensor pressed and held still is fused in

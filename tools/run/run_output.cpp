@@ -85,9 +85,15 @@ void write_text(const std::string& path, const std::string& text) {
     if (::close(fd) != 0) throw Error(ErrorKind::Io, path + ": write failed: " + std::strerror(errno));
 }
 
+bool same_bits(const Image& a, const Image& b) {
+    return a.height == b.height && a.width == b.width && a.channels == b.channels &&
+           std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
+}
+
 }  // namespace
 
-std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const std::string& object, bool skipping) {
+std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const std::string& object, bool skipping,
+                         std::optional<std::uint64_t> image_from_cycle) {
     std::string line = "{\"cycle\": " + std::to_string(cycle.cycle) + ", \"sensor\": " + json_string(s.serial) +
                        ", \"status\": " + json_string(std::string(to_string(s.status)));
     if (s.status != SensorStatus::Ok) return line + ", \"error\": " + json_string(s.error) + "}";
@@ -113,6 +119,7 @@ std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const s
                     std::to_string(r.left) + ", " + std::to_string(r.width) + "]";
         if (s.watch) line += ", \"watch\": true";
     }
+    if (image_from_cycle) line += ", \"image_from_cycle\": " + std::to_string(*image_from_cycle);
     return line + "}";
 }
 
@@ -146,16 +153,30 @@ RunOutput::~RunOutput() {
 void RunOutput::write(const CycleResult& cycle) {
     const std::string metrics_path = (fs::path(directory_) / kMetricsName).string();
     for (const SensorCycle& s : cycle.sensors) {
-        write_all(metrics_fd_, metrics_line(cycle, s, object_, skipping_) + "\n", metrics_path);
-        if (s.status != SensorStatus::Ok || !s.fused) continue;
+        if (s.status != SensorStatus::Ok || !s.fused) {
+            write_all(metrics_fd_, metrics_line(cycle, s, object_, skipping_) + "\n", metrics_path);
+            continue;
+        }
         io::check_plain_component(s.serial, "serial");
         const fs::path dir = fs::path(directory_) / kFusedName / s.serial;
-        make_directory(dir);
-        fused_pngs_.push((dir / cycle_name(cycle.cycle)).string(), *s.fused);
+        const std::string path = (dir / cycle_name(cycle.cycle)).string();
+        // An idle or reused cycle usually hands back the image of an earlier
+        // one: that file gets a second name instead of a second encoding.
+        Written& last_written = written_[s.serial];
+        std::optional<std::uint64_t> image_from;
+        if (last_written.image && same_bits(*last_written.image, *s.fused)) {
+            image_from = last_written.cycle;
+        } else {
+            if (!last_written.image) make_directory(dir);
+            last_written = {std::make_shared<const Image>(*s.fused), path, cycle.cycle};
+        }
+        write_all(metrics_fd_, metrics_line(cycle, s, object_, skipping_, image_from) + "\n", metrics_path);
+        if (image_from) fused_pngs_.push_link(path, last_written.path);
+        else fused_pngs_.push_png(path, last_written.image);
         if (s.watch) continue;  // one setting only: the side-by-side picture shows a whole cycle
         auto it = std::find_if(last_.begin(), last_.end(), [&](const auto& e) { return e.first == s.serial; });
         if (it == last_.end()) it = last_.insert(last_.end(), {s.serial, {}});
-        it->second = {s.frames, *s.fused, s.metrics, cycle.cycle};
+        it->second = {s.frames.at(labels_.static_slot), last_written.image, s.metrics, cycle.cycle};
     }
 }
 
@@ -174,7 +195,7 @@ void RunOutput::add_background(const std::string& serial, const Illumination& se
 // metrics over the static frame's (the paper's gains; above 1: better), and
 // whose picture it is.
 Image RunOutput::captioned_side_by_side(const std::string& serial, const Last& last) const {
-    const Frame& still = last.frames.at(labels_.static_slot);
+    const Frame& still = last.still;
     ImageD frame(still.height, still.width, 3);
     for (std::size_t i = 0; i < frame.data.size(); ++i) frame.data[i] = double(still.pixels[i]) / 255.0;
     const auto bg = static_backgrounds_.find(serial);
@@ -190,7 +211,7 @@ Image RunOutput::captioned_side_by_side(const std::string& serial, const Last& l
     gain("sharpness", last.metrics.sharpness, base.sharpness);
     gain("contrast", last.metrics.contrast, base.contrast);
     if (with_bg && base.background_diff) gain("background diff", *last.metrics.background_diff, *base.background_diff);
-    const Image pair = side_by_side(still, last.fused);
+    const Image pair = side_by_side(still, *last.fused);
     const int scale = std::max(1, pair.width / 700);
     const std::vector<CaptionLine> lines = {
         {{"static " + labels_.sequence[labels_.static_slot].to_string(), 0},

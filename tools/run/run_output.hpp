@@ -1,6 +1,8 @@
 // run_output.hpp - what `vkfuse run --out DIR` writes:
 //   DIR/metrics.jsonl                       one JSON object per sensor per cycle
-//   DIR/fused/<serial>/<cycle>.png          every fused frame (8-bit, clamped)
+//   DIR/fused/<serial>/<cycle>.png          every fused frame (8-bit, clamped); a frame
+//                                           bit for bit the sensor's last one written is
+//                                           another name for that file, not a new encoding
 //   DIR/side_by_side/<object>_<serial>.png  the last static frame | the last fused frame, under a
 //                                           caption: the static setting, the fused sequence and
 //                                           method, the metrics' gains over the static frame
@@ -9,7 +11,9 @@
 // and appear under the user's --out name only when the run succeeds.
 #pragma once
 #include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,9 +26,11 @@
 namespace vkfuse::cli {
 
 // One metrics line (no wall-clock values: a replay reproduces it exactly).
-// With skipping on it also carries the cycle's largest tile change score.
+// With skipping on it also carries the cycle's largest tile change score;
+// image_from_cycle, when given, names the earlier cycle whose fused PNG holds
+// this cycle's image ("image_from_cycle").
 std::string metrics_line(const CycleResult& cycle, const SensorCycle& sensor, const std::string& object,
-                         bool skipping);
+                         bool skipping, std::optional<std::uint64_t> image_from_cycle = std::nullopt);
 
 // The slot of sequence lit by every LED at full level (the sensor's usual,
 // static illumination), else slot 0.
@@ -62,10 +68,17 @@ public:
     void finish(const std::string& summary_json);
 
 private:
+    // A sensor's last whole cycle, for its side-by-side picture.
     struct Last {
-        std::vector<Frame> frames;
-        Image fused;
+        Frame still;  // the static setting's frame
+        std::shared_ptr<const Image> fused;
         Metrics metrics;
+        std::uint64_t cycle = 0;
+    };
+    // A sensor's last fused PNG encoded: later cycles with the same bits name it.
+    struct Written {
+        std::shared_ptr<const Image> image;
+        std::string path;
         std::uint64_t cycle = 0;
     };
     Image captioned_side_by_side(const std::string& serial, const Last& last) const;
@@ -75,6 +88,7 @@ private:
     bool skipping_;
     int metrics_fd_ = -1;
     std::vector<std::pair<std::string, Last>> last_;  // by serial, in sensor order
+    std::map<std::string, Written> written_;           // by serial
     std::mutex backgrounds_mutex_;
     std::map<std::string, ImageD> static_backgrounds_;  // by serial
     ImageWriteQueue fused_pngs_;  // last: stopped before anything it writes about goes
