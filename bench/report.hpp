@@ -34,7 +34,10 @@ json::Value cell_json(const CellResult& r);
 void write_json(const std::string& path, const std::vector<CellResult>& results);
 
 // --plot FILE.svg: time against error, log-log, one colour per method and one
-// marker per backend and precision, so the speed/accuracy trade-off is seen.
+// marker per backend and precision and per peer (Python, OpenCV C++), so the
+// speed/accuracy trade-off is seen. Each point carries its workload's number,
+// placed where it overlaps no other label or marker; a table under the plot
+// gives each numbered workload's times and errors.
 
 // Writes a self-contained SVG (no scripts, no fonts beyond sans-serif)
 // atomically; throws vkfuse::Error(Io).

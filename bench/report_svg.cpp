@@ -15,14 +15,24 @@ namespace {
 // axis; it is drawn at this floor and the legend says so.
 constexpr double kErrorFloor = 1e-10;
 
-enum class Marker { Vulkan, VulkanFp16, Cpu, Peer };
+enum class Marker { Vulkan, VulkanFp16, Cpu, Peer, CppPeer };
+
+// One workload (method, levels, size, K, S): a row of the table under the
+// plot, numbered; its points carry the number.
+struct Workload {
+    std::string method;  // "wavelet/bior4.4 L3"
+    std::string size;
+    int frames = 0, sensors = 0;
+    // Per marker: ms per sensor-cycle and the fused image's max abs error.
+    std::map<Marker, std::pair<double, double>> cells;
+};
 
 struct Point {
     double ms;      // per sensor-cycle
     double error;   // max abs error of the fused image
     std::string method;
     Marker marker;
-    std::string label;
+    std::size_t workload;  // index into the table's rows
 };
 
 struct Frame {  // the plotting area and its log-log mapping
@@ -49,28 +59,45 @@ std::string num(double v) {
     return text;
 }
 
-std::string point_label(const Cell& c) {
-    return short_size_name(c.size) + " K" + std::to_string(c.frames) + " S" + std::to_string(c.sensors);
-}
-
 Marker marker_of(const Cell& c) {
     if (c.backend == Backend::Cpu) return Marker::Cpu;
     return c.precision == Precision::Fp16Storage ? Marker::VulkanFp16 : Marker::Vulkan;
 }
 
-std::vector<Point> collect(const std::vector<CellResult>& results) {
+std::string method_name(const Cell& c) {
+    return label(c.method) + (c.levels > 0 ? " L" + std::to_string(c.levels) : "");
+}
+
+// Every measured cell, each workload's peers once: a peer runs one sensor, so
+// its point is the same at every S and is drawn with the first workload's
+// number.
+std::pair<std::vector<Point>, std::vector<Workload>> collect(const std::vector<CellResult>& results) {
     std::vector<Point> pts;
+    std::vector<Workload> rows;
+    std::map<std::string, std::size_t> row_of, peer_row_of;
+    const auto add = [&](const Cell& c, Marker m, double ms, double error) {
+        const std::string key = method_name(c) + "|" + short_size_name(c.size) + "|" + std::to_string(c.frames) + "|" +
+                                std::to_string(c.sensors);
+        auto [it, fresh] = row_of.emplace(key, rows.size());
+        if (fresh) rows.push_back({method_name(c), short_size_name(c.size), c.frames, c.sensors, {}});
+        rows[it->second].cells[m] = {ms, error};
+        if (m == Marker::Peer || m == Marker::CppPeer) {
+            const std::string peer_key = key.substr(0, key.rfind('|')) + (m == Marker::Peer ? "|py" : "|cpp");
+            if (!peer_row_of.emplace(peer_key, it->second).second) return;
+        }
+        pts.push_back({ms, std::max(error, kErrorFloor), label(c.method), m, it->second});
+    };
     for (std::size_t i = 0; i < results.size(); ++i) {
         const auto& r = results[i];
-        if (r.measured())
-            pts.push_back({r.timing.median_ms / r.cell.sensors, std::max(r.error.max_abs, kErrorFloor), label(r.cell.method),
-                           marker_of(r.cell), point_label(r.cell)});
+        if (r.measured()) add(r.cell, marker_of(r.cell), r.timing.median_ms / r.cell.sensors, r.error.max_abs);
         const bool first_of_workload = i == 0 || !results[i - 1].cell.same_workload(r.cell);
-        if (first_of_workload && r.peer && r.peer->failure.empty())
-            pts.push_back({r.peer->per_sensor.median_ms, std::max(r.peer->error.max_abs, kErrorFloor), label(r.cell.method),
-                           Marker::Peer, point_label(r.cell)});
+        if (!first_of_workload) continue;
+        if (r.peer && r.peer->failure.empty())
+            add(r.cell, Marker::Peer, r.peer->per_sensor.median_ms, r.peer->error.max_abs);
+        if (r.cpp_peer && r.cpp_peer->failure.empty())
+            add(r.cell, Marker::CppPeer, r.cpp_peer->per_sensor.median_ms, r.cpp_peer->error.max_abs);
     }
-    return pts;
+    return {pts, rows};
 }
 
 Frame fit(const std::vector<Point>& pts) {
@@ -98,6 +125,9 @@ std::string marker_svg(Marker m, double x, double y, const char* fill) {
                    num(y + 6) + " " + num(x - 6) + "," + num(y) + "\"" + style;
         case Marker::Cpu:
             return "<rect x=\"" + num(x - 4.5) + "\" y=\"" + num(y - 4.5) + "\" width=\"9\" height=\"9\"" + style;
+        case Marker::CppPeer:  // a triangle pointing down
+            return "<polygon points=\"" + num(x) + "," + num(y + 6) + " " + num(x - 5.5) + "," + num(y - 4) + " " +
+                   num(x + 5.5) + "," + num(y - 4) + "\"" + style;
         case Marker::Peer: break;
     }
     return "<polygon points=\"" + num(x) + "," + num(y - 6) + " " + num(x - 5.5) + "," + num(y + 4) + " " + num(x + 5.5) +
@@ -145,6 +175,12 @@ std::string axes_svg(const Frame& f) {
     return s;
 }
 
+const std::pair<Marker, const char*> kKinds[] = {{Marker::Vulkan, "vulkan fp32"},
+                                                 {Marker::VulkanFp16, "vulkan fp16 storage"},
+                                                 {Marker::Cpu, "cpu reference (double)"},
+                                                 {Marker::Peer, "python peer (float32)"},
+                                                 {Marker::CppPeer, "opencv c++ peer"}};
+
 std::string legend_svg(const Frame& f, const std::vector<Point>& pts) {
     double y = f.top + 10;
     const double x = f.left + f.width + 20;
@@ -158,35 +194,119 @@ std::string legend_svg(const Frame& f, const std::vector<Point>& pts) {
         y += 18;
     }
     y += 10;
-    const std::pair<Marker, const char*> kinds[] = {
-        {Marker::Vulkan, "vulkan fp32"}, {Marker::VulkanFp16, "vulkan fp16 storage"}, {Marker::Cpu, "cpu reference (double)"}, {Marker::Peer, "python peer (float32)"}};
-    for (const auto& [m, name] : kinds) {
+    for (const auto& [m, name] : kKinds) {
         s += marker_svg(m, x + 6, y - 3, "#fff");
         s += text_svg(x + 18, y + 2, name);
         y += 18;
     }
     s += text_svg(x, y + 12, "error 0 (the reference itself)", " font-size=\"10\"");
     s += text_svg(x, y + 25, "is drawn at 1e-10", " font-size=\"10\"");
+    s += text_svg(x, y + 45, "numbers: rows of the table", " font-size=\"10\"");
+    s += text_svg(x, y + 58, "below the plot", " font-size=\"10\"");
+    return s;
+}
+
+struct Box {
+    double x0, y0, x1, y1;
+    bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// Width and height of a label in the plot's 9 px sans-serif, a little generous.
+constexpr double kLabelCharWidth = 5.6, kLabelHeight = 9;
+
+// Each point's workload number beside it, in the first of eight places around
+// the marker (then eight more, further out) that overlaps no marker, no label
+// already placed and nothing outside the plotting area. A point with no free
+// place stays unlabelled; the table still lists it, and the plot says how
+// many there are.
+std::string labels_svg(const Frame& f, const std::vector<Point>& pts, std::size_t* unlabelled) {
+    std::vector<Box> taken;
+    for (const auto& p : pts) taken.push_back({f.x(p.ms) - 6, f.y(p.error) - 6, f.x(p.ms) + 6, f.y(p.error) + 6});
+    const Box area{f.left, f.top, f.left + f.width, f.top + f.height};
+    std::string s;
+    *unlabelled = 0;
+    for (const auto& p : pts) {
+        const std::string text = std::to_string(p.workload + 1);
+        const double w = kLabelCharWidth * double(text.size()), h = kLabelHeight;
+        const double mx = f.x(p.ms), my = f.y(p.error);
+        bool placed = false;
+        for (double d : {7.0, 15.0}) {
+            // Top-left corners: right, left, above, below, then the diagonals.
+            const std::pair<double, double> corners[] = {
+                {mx + d, my - h / 2}, {mx - d - w, my - h / 2}, {mx - w / 2, my - d - h}, {mx - w / 2, my + d},
+                {mx + d - 2, my - d - h + 2}, {mx + d - 2, my + d - 2}, {mx - d - w + 2, my - d - h + 2},
+                {mx - d - w + 2, my + d - 2}};
+            for (const auto& [cx, cy] : corners) {
+                const Box b{cx, cy, cx + w, cy + h};
+                if (b.x0 < area.x0 || b.y0 < area.y0 || b.x1 > area.x1 || b.y1 > area.y1) continue;
+                if (std::any_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(b); })) continue;
+                taken.push_back(b);
+                s += text_svg(cx, cy + h - 1.5, text, " class=\"point-label\" font-size=\"9\" fill=\"#444\"");
+                placed = true;
+                break;
+            }
+            if (placed) break;
+        }
+        if (!placed) ++*unlabelled;
+    }
+    return s;
+}
+
+std::string cell_text(const Workload& w, Marker m) {
+    const auto it = w.cells.find(m);
+    if (it == w.cells.end()) return "-";
+    char text[48];
+    std::snprintf(text, sizeof text, "%.3g ms  %.1e", it->second.first, it->second.second);
+    return text;
+}
+
+constexpr double kRowHeight = 15;
+
+// The detail the points' numbers stand for: per workload, each kind's time
+// per sensor-cycle and error.
+std::string table_svg(double top, const std::vector<Workload>& rows) {
+    const double columns[] = {20, 50, 190, 240, 265, 300, 440, 580, 720, 860};
+    const char* heads[] = {"#", "method", "size", "K", "S"};
+    std::string s;
+    for (int c = 0; c < 5; ++c) s += text_svg(columns[c], top, heads[c], " font-weight=\"bold\"");
+    for (std::size_t k = 0; k < std::size(kKinds); ++k)
+        s += text_svg(columns[5 + k], top, kKinds[k].second, " font-weight=\"bold\"");
+    double y = top;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Workload& w = rows[i];
+        y += kRowHeight;
+        s += text_svg(columns[0], y, std::to_string(i + 1));
+        s += text_svg(columns[1], y, w.method, (" fill=\"" + colour(w.method.substr(0, w.method.find(' '))) + "\"").c_str());
+        s += text_svg(columns[2], y, w.size);
+        s += text_svg(columns[3], y, std::to_string(w.frames));
+        s += text_svg(columns[4], y, std::to_string(w.sensors));
+        for (std::size_t k = 0; k < std::size(kKinds); ++k) s += text_svg(columns[5 + k], y, cell_text(w, kKinds[k].first));
+    }
     return s;
 }
 
 }  // namespace
 
 void write_plot(const std::string& path, const std::vector<CellResult>& results, const std::string& device) {
-    const std::vector<Point> pts = collect(results);
-    std::string svg =
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000\" height=\"600\" font-family=\"sans-serif\" "
-        "font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+    const auto [pts, rows] = collect(results);
+    constexpr double kTableTop = 620;
+    const double height = pts.empty() ? 600 : kTableTop + kRowHeight * double(rows.size() + 1) + 20;
+    std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000\" height=\"" + num(height) +
+                      "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
     svg += text_svg(80, 28, "vkfuse-bench: time against error (" + device + ")", " font-size=\"15\"");
     if (pts.empty()) {
         svg += text_svg(80, 80, "no measured cell");
     } else {
         const Frame f = fit(pts);
         svg += axes_svg(f) + legend_svg(f, pts);
-        for (const auto& p : pts) {
-            svg += marker_svg(p.marker, f.x(p.ms), f.y(p.error), colour(p.method).c_str());
-            svg += text_svg(f.x(p.ms) + 7, f.y(p.error) - 6, p.label, " font-size=\"9\" fill=\"#444\"");
-        }
+        for (const auto& p : pts) svg += marker_svg(p.marker, f.x(p.ms), f.y(p.error), colour(p.method).c_str());
+        std::size_t unlabelled = 0;
+        svg += labels_svg(f, pts, &unlabelled);
+        if (unlabelled > 0)
+            svg += text_svg(f.left + f.width, f.top - 8,
+                            std::to_string(unlabelled) + " point(s) too crowded to number: see the table",
+                            " text-anchor=\"end\" font-size=\"10\"");
+        svg += table_svg(kTableTop, rows);
     }
     svg += "</svg>\n";
     io::write_atomically(path, [&](std::FILE* out) { io::write_all(out, svg, path); });
