@@ -37,6 +37,11 @@ public:
         return *this;
     }
     Writer& count(std::size_t n) { return num(std::uint32_t(n)); }
+    // A std_msgs/Header: its stamp (builtin_interfaces/Time: int32 seconds,
+    // uint32 nanoseconds) time_ns after the epoch, then frame_id.
+    Writer& header(std::uint64_t time_ns, std::string_view frame_id) {
+        return num(std::int32_t(time_ns / 1'000'000'000u)).num(std::uint32_t(time_ns % 1'000'000'000u)).str(frame_id);
+    }
 
     const std::string& bytes() const { return out_; }
     std::string take() { return std::move(out_); }

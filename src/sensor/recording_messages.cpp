@@ -16,10 +16,6 @@ namespace {
 
 constexpr std::uint8_t kStatusOk = 0, kStatusTimeout = 1, kStatusFailed = 2;
 
-void header(io::cdr::Writer& w, std::uint64_t time_ns, const std::string& frame_id) {
-    w.num(std::int32_t(time_ns / 1'000'000'000u)).num(std::uint32_t(time_ns % 1'000'000'000u)).str(frame_id);
-}
-
 }  // namespace
 
 std::string frame_topic(const std::string& serial) { return "/vkfuse/" + ros2_topic_token(serial) + "/frame"; }
@@ -34,7 +30,7 @@ std::uint64_t frame_time_ns(double timestamp) {
 std::string encode_frame(const std::string& serial, const Frame& frame, const Illumination& lit_by,
                          const std::string& object, bool background, std::int64_t cycle) {
     io::cdr::Writer w;
-    header(w, frame_time_ns(frame.timestamp), serial);
+    w.header(frame_time_ns(frame.timestamp), serial);
     w.num(std::uint32_t(frame.height)).num(std::uint32_t(frame.width)).str("rgb8").num(std::uint8_t(0));
     w.num(std::uint32_t(frame.width) * 3u).octets(frame.pixels.data(), frame.pixels.size());
     w.count(lit_by.levels().size());
@@ -85,7 +81,7 @@ std::optional<DecodedFrame> decode_frame(std::string_view payload, std::string& 
 std::string encode_miss(const std::string& serial, const DatasetMiss& miss, std::uint64_t time_ns) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     io::cdr::Writer w;
-    header(w, time_ns, serial);
+    w.header(time_ns, serial);
     w.str(serial).num(std::uint64_t(miss.cycle)).num(miss.status == "timeout" ? kStatusTimeout : kStatusFailed);
     w.str(miss.error).str("").count(0);
     w.num(nan).num(nan).num(nan);

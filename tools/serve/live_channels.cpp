@@ -33,10 +33,9 @@ const char* kRigSchema = R"({"title": "vkfuse.Rig", "type": "object",
  "properties": {"sensors": {"type": "array"}, "sequence": {"type": "array"}, "method": {"type": "string"},
   "object": {"type": "string"}, "static_slot": {"type": "integer"}}})";
 
-// A std_msgs/Header: the stamp, then the frame id.
+// A std_msgs/Header stamped at.
 void header(io::cdr::Writer& w, const std::string& frame_id, std::chrono::system_clock::time_point at) {
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(at.time_since_epoch()).count();
-    w.num(std::int32_t(ns / 1'000'000'000)).num(std::uint32_t(ns % 1'000'000'000)).str(frame_id);
+    w.header(std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(at.time_since_epoch()).count()), frame_id);
 }
 
 std::string setting_token(const Illumination& s) {
