@@ -52,7 +52,11 @@ for target in png npy args mcap ws; do
         exit 1
     fi
 done
-stage_done "fuzzing (5 x $FUZZ_SECONDS s)"
+# The Python module's entry points, random calls for as long (CI's python.fuzz: 20 s).
+if [ -d build/python/vkfuse ]; then
+    PYTHONPATH=build/python python3 tests/python/fuzz_entry_points.py "$FUZZ_SECONDS"
+fi
+stage_done "fuzzing (6 x $FUZZ_SECONDS s)"
 
 # 2. Soaks. (a) Plan::run 100,000 times: memory flat, output bit-identical for
 #    identical input, no Vulkan object leaked (64x48 frames: ~2 ms a cycle on
