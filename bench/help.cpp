@@ -57,7 +57,10 @@ Output:
                     same fields prefixed cpp_peer (cpp_peer, cpp_peer_failure,
                     cpp_peer_median_ms, ..., cpp_peer_speedup)
   --plot FILE.svg   log-log time per sensor-cycle against max abs error,
-                    coloured by method, marked by backend and precision
+                    coloured by method, marked by backend and precision and
+                    peer (Python, OpenCV C++); each point numbered by its
+                    workload, with the workloads' times and errors in a table
+                    under the plot
   --profile         per-stage GPU times from Plan::profile() (median over runs)
 
 Measurement:
