@@ -237,7 +237,8 @@ std::string labels_svg(const Frame& f, const std::vector<Point>& pts, std::size_
                 {mx + d - 2, my - d - h + 2}, {mx + d - 2, my + d - 2}, {mx - d - w + 2, my - d - h + 2},
                 {mx - d - w + 2, my + d - 2}};
             for (const auto& [cx, cy] : corners) {
-                const Box b{cx, cy, cx + w, cy + h};
+                // 3 px of air each side, so that "3" beside "18" never reads as "318".
+                const Box b{cx - 3, cy, cx + w + 3, cy + h};
                 if (b.x0 < area.x0 || b.y0 < area.y0 || b.x1 > area.x1 || b.y1 > area.y1) continue;
                 if (std::any_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(b); })) continue;
                 taken.push_back(b);
@@ -265,12 +266,12 @@ constexpr double kRowHeight = 15;
 // The detail the points' numbers stand for: per workload, each kind's time
 // per sensor-cycle and error.
 std::string table_svg(double top, const std::vector<Workload>& rows) {
-    const double columns[] = {20, 50, 190, 240, 265, 300, 440, 580, 720, 860};
-    const char* heads[] = {"#", "method", "size", "K", "S"};
-    std::string s;
-    for (int c = 0; c < 5; ++c) s += text_svg(columns[c], top, heads[c], " font-weight=\"bold\"");
-    for (std::size_t k = 0; k < std::size(kKinds); ++k)
-        s += text_svg(columns[5 + k], top, kKinds[k].second, " font-weight=\"bold\"");
+    // 11 px type: a time and an error take about 95 px, a column 140.
+    const double columns[] = {20, 45, 180, 245, 270, 300, 440, 580, 720, 860};
+    const char* heads[] = {"#", "method", "size", "K", "S", "vulkan fp32", "vulkan fp16", "cpu (double)", "python", "opencv c++"};
+    static_assert(std::size(heads) == std::size(columns) && std::size(columns) == 5 + std::size(kKinds));
+    std::string s = "<g font-size=\"11\">\n";
+    for (std::size_t c = 0; c < std::size(heads); ++c) s += text_svg(columns[c], top, heads[c], " font-weight=\"bold\"");
     double y = top;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Workload& w = rows[i];
@@ -282,7 +283,7 @@ std::string table_svg(double top, const std::vector<Workload>& rows) {
         s += text_svg(columns[4], y, std::to_string(w.sensors));
         for (std::size_t k = 0; k < std::size(kKinds); ++k) s += text_svg(columns[5 + k], y, cell_text(w, kKinds[k].first));
     }
-    return s;
+    return s + "</g>\n";
 }
 
 }  // namespace
