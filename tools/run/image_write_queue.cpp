@@ -27,8 +27,7 @@ std::size_t bytes_of(const std::shared_ptr<const Image>& image) {
 // again if it cannot be written whole.
 void write_new_png(const std::string& path, const Image& image) {
     io::check_finite(image, path);
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd < 0) fail_io(path, "cannot create", errno);
+    const int fd = create_new_file(path);
     std::FILE* out = ::fdopen(fd, "wb");
     if (!out) {
         const int err = errno;
@@ -52,6 +51,12 @@ void write_new_png(const std::string& path, const Image& image) {
 }
 
 }  // namespace
+
+int create_new_file(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0) fail_io(path, "cannot create", errno);
+    return fd;
+}
 
 void add_file_name(const std::string& earlier, const std::string& path) {
     if (::link(earlier.c_str(), path.c_str()) == 0) return;

@@ -68,6 +68,10 @@ private:
     std::thread thread_;  // last: started once everything above exists
 };
 
+// A new file at path, open for writing (O_EXCL, O_NOFOLLOW: nothing planted
+// under its name is opened). Throws Error(Io) naming path.
+int create_new_file(const std::string& path);
+
 // path as a new name for the existing file earlier: a hard link, or where the
 // file system refuses one (no links, another device, too many) a new file
 // holding earlier's bytes. Throws Error(Io) naming path.

@@ -1,6 +1,5 @@
 #include "run/run_output.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,13 +30,6 @@ void make_directory(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw Error(ErrorKind::Io, dir.string() + ": cannot create: " + ec.message());
-}
-
-// A new file only (O_EXCL, O_NOFOLLOW): nothing planted under its name is opened.
-int create_new(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd < 0) throw Error(ErrorKind::Io, path + ": cannot create: " + std::strerror(errno));
-    return fd;
 }
 
 // All of text in as few write() calls as the kernel allows: one for a line of
@@ -75,7 +67,7 @@ Image side_by_side(const Frame& still, const Image& fused) {
 }
 
 void write_text(const std::string& path, const std::string& text) {
-    const int fd = create_new(path);
+    const int fd = create_new_file(path);
     try {
         write_all(fd, text, path);
     } catch (...) {
@@ -143,7 +135,7 @@ RunOutput::RunOutput(std::string directory, std::string object, RunOutputLabels 
       skipping_(skipping),
       fused_pngs_(kMaxPendingImageBytes) {
     io::check_plain_component(object_, "object");
-    metrics_fd_ = create_new((fs::path(directory_) / kMetricsName).string());
+    metrics_fd_ = create_new_file((fs::path(directory_) / kMetricsName).string());
 }
 
 RunOutput::~RunOutput() {
