@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
+#include <tuple>
 
 #include "core/method_table.hpp"
 #include "io/atomic_write.hpp"
@@ -74,17 +76,16 @@ std::string method_name(const Cell& c) {
 std::pair<std::vector<Point>, std::vector<Workload>> collect(const std::vector<CellResult>& results) {
     std::vector<Point> pts;
     std::vector<Workload> rows;
-    std::map<std::string, std::size_t> row_of, peer_row_of;
+    // A row per (method, size, K, S); a peer's point per (method, size, K).
+    std::map<std::tuple<std::string, std::string, int, int>, std::size_t> row_of;
+    std::set<std::tuple<std::string, std::string, int, Marker>> peers_drawn;
     const auto add = [&](const Cell& c, Marker m, double ms, double error) {
-        const std::string key = method_name(c) + "|" + short_size_name(c.size) + "|" + std::to_string(c.frames) + "|" +
-                                std::to_string(c.sensors);
-        auto [it, fresh] = row_of.emplace(key, rows.size());
-        if (fresh) rows.push_back({method_name(c), short_size_name(c.size), c.frames, c.sensors, {}});
+        Workload w{method_name(c), short_size_name(c.size), c.frames, c.sensors, {}};
+        auto [it, fresh] = row_of.emplace(std::tuple(w.method, w.size, w.frames, w.sensors), rows.size());
+        if (fresh) rows.push_back(w);
         rows[it->second].cells[m] = {ms, error};
-        if (m == Marker::Peer || m == Marker::CppPeer) {
-            const std::string peer_key = key.substr(0, key.rfind('|')) + (m == Marker::Peer ? "|py" : "|cpp");
-            if (!peer_row_of.emplace(peer_key, it->second).second) return;
-        }
+        const bool peer = m == Marker::Peer || m == Marker::CppPeer;
+        if (peer && !peers_drawn.emplace(w.method, w.size, w.frames, m).second) return;
         pts.push_back({ms, std::max(error, kErrorFloor), label(c.method), m, it->second});
     };
     for (std::size_t i = 0; i < results.size(); ++i) {
@@ -175,11 +176,17 @@ std::string axes_svg(const Frame& f) {
     return s;
 }
 
-const std::pair<Marker, const char*> kKinds[] = {{Marker::Vulkan, "vulkan fp32"},
-                                                 {Marker::VulkanFp16, "vulkan fp16 storage"},
-                                                 {Marker::Cpu, "cpu reference (double)"},
-                                                 {Marker::Peer, "python peer (float32)"},
-                                                 {Marker::CppPeer, "opencv c++ peer"}};
+// Each kind of point: its name in the legend and over its column of the table.
+struct Kind {
+    Marker marker;
+    const char* legend;
+    const char* column;
+};
+const Kind kKinds[] = {{Marker::Vulkan, "vulkan fp32", "vulkan fp32"},
+                       {Marker::VulkanFp16, "vulkan fp16 storage", "vulkan fp16"},
+                       {Marker::Cpu, "cpu reference (double)", "cpu (double)"},
+                       {Marker::Peer, "python peer (float32)", "python"},
+                       {Marker::CppPeer, "opencv c++ peer", "opencv c++"}};
 
 std::string legend_svg(const Frame& f, const std::vector<Point>& pts) {
     double y = f.top + 10;
@@ -194,9 +201,9 @@ std::string legend_svg(const Frame& f, const std::vector<Point>& pts) {
         y += 18;
     }
     y += 10;
-    for (const auto& [m, name] : kKinds) {
-        s += marker_svg(m, x + 6, y - 3, "#fff");
-        s += text_svg(x + 18, y + 2, name);
+    for (const Kind& k : kKinds) {
+        s += marker_svg(k.marker, x + 6, y - 3, "#fff");
+        s += text_svg(x + 18, y + 2, k.legend);
         y += 18;
     }
     s += text_svg(x, y + 12, "error 0 (the reference itself)", " font-size=\"10\"");
@@ -268,10 +275,12 @@ constexpr double kRowHeight = 15;
 std::string table_svg(double top, const std::vector<Workload>& rows) {
     // 11 px type: a time and an error take about 95 px, a column 140.
     const double columns[] = {20, 45, 180, 245, 270, 300, 440, 580, 720, 860};
-    const char* heads[] = {"#", "method", "size", "K", "S", "vulkan fp32", "vulkan fp16", "cpu (double)", "python", "opencv c++"};
-    static_assert(std::size(heads) == std::size(columns) && std::size(columns) == 5 + std::size(kKinds));
+    const char* heads[] = {"#", "method", "size", "K", "S"};
+    static_assert(std::size(columns) == std::size(heads) + std::size(kKinds));
     std::string s = "<g font-size=\"11\">\n";
     for (std::size_t c = 0; c < std::size(heads); ++c) s += text_svg(columns[c], top, heads[c], " font-weight=\"bold\"");
+    for (std::size_t k = 0; k < std::size(kKinds); ++k)
+        s += text_svg(columns[std::size(heads) + k], top, kKinds[k].column, " font-weight=\"bold\"");
     double y = top;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Workload& w = rows[i];
@@ -281,7 +290,7 @@ std::string table_svg(double top, const std::vector<Workload>& rows) {
         s += text_svg(columns[2], y, w.size);
         s += text_svg(columns[3], y, std::to_string(w.frames));
         s += text_svg(columns[4], y, std::to_string(w.sensors));
-        for (std::size_t k = 0; k < std::size(kKinds); ++k) s += text_svg(columns[5 + k], y, cell_text(w, kKinds[k].first));
+        for (std::size_t k = 0; k < std::size(kKinds); ++k) s += text_svg(columns[std::size(heads) + k], y, cell_text(w, kKinds[k].marker));
     }
     return s + "</g>\n";
 }
