@@ -42,15 +42,18 @@ public:
 
 private:
     void start(const Dataset& dataset);
+    // /vkfuse/rig's one message, before the first frame or miss.
+    void describe(const Dataset& dataset, std::uint64_t time_ns);
 
     std::string path_;
     std::FILE* file_ = nullptr;
     std::unique_ptr<io::mcap::Writer> writer_;
     std::size_t sensors_ = 0;  // those described when it started
     std::vector<std::uint16_t> frame_channels_, metrics_channels_;
+    std::uint16_t rig_channel_ = 0;
     std::vector<std::uint32_t> frame_sequences_, miss_sequences_;
     std::vector<std::uint64_t> last_time_;  // per sensor: a miss is dated by the frame before it
-    bool started_ = false, finished_ = false;
+    bool started_ = false, described_ = false, finished_ = false;
 };
 
 Dataset read_mcap_dataset(const std::string& path);

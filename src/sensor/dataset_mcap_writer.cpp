@@ -57,16 +57,27 @@ void McapDatasetWriter::start(const Dataset& dataset) {
         writer_->add_schema(std::string(recording::kFrameType), "ros2msg", io::mcap::bytes_of(frame_schema));
     const auto metrics =
         writer_->add_schema(std::string(recording::kMetricsType), "ros2msg", io::mcap::bytes_of(metrics_schema));
+    const auto rig = writer_->add_schema(std::string(recording::kRigType), "ros2msg",
+                                         io::mcap::bytes_of(ros2msg_schema(recording::kRigType)));
     // rosbag2 reads each channel's QoS from this key; empty: the defaults.
     const std::map<std::string, std::string> qos{{"offered_qos_profiles", ""}};
     for (const DatasetSensorRecord& s : dataset.sensors) {
         frame_channels_.push_back(writer_->add_channel(frames, recording::frame_topic(s.info.serial), "cdr", qos));
         metrics_channels_.push_back(writer_->add_channel(metrics, recording::metrics_topic(s.info.serial), "cdr", qos));
     }
+    rig_channel_ = writer_->add_channel(rig, std::string(recording::kRigTopic), "cdr", qos);
     sensors_ = dataset.sensors.size();
     frame_sequences_.assign(sensors_, 0);
     miss_sequences_.assign(sensors_, 0);
     last_time_.assign(sensors_, 0);
+}
+
+void McapDatasetWriter::describe(const Dataset& dataset, std::uint64_t time_ns) {
+    // Dated as the first message after it, since players (ros2 bag play)
+    // start at the earliest message: one at 0 would hold up the frames.
+    if (described_) return;
+    described_ = true;
+    writer_->write(rig_channel_, 0, time_ns, time_ns, io::mcap::bytes_of(recording::encode_rig(dataset, time_ns)));
 }
 
 void McapDatasetWriter::add_frame(const Dataset& dataset, int sensor, const std::string& object, bool background,
@@ -77,6 +88,7 @@ void McapDatasetWriter::add_frame(const Dataset& dataset, int sensor, const std:
     const std::string& serial = dataset.sensors[i].info.serial;
     const std::uint64_t t = recording::frame_time_ns(frame.timestamp);
     last_time_[i] = std::max(last_time_[i], t);
+    describe(dataset, t);
     writer_->write(frame_channels_[i], frame_sequences_[i]++, t, t,
                    io::mcap::bytes_of(recording::encode_frame(serial, frame, lit_by, object, background, cycle)));
 }
@@ -85,6 +97,7 @@ void McapDatasetWriter::add_miss(const Dataset& dataset, int sensor, const Datas
     start(dataset);
     const std::size_t i = std::size_t(sensor);
     if (i >= sensors_) throw Error(ErrorKind::InvalidArgument, path_ + ": sensor #" + std::to_string(sensor) + " added after the first frame");
+    describe(dataset, last_time_[i]);
     writer_->write(metrics_channels_[i], miss_sequences_[i]++, last_time_[i], last_time_[i],
                    io::mcap::bytes_of(recording::encode_miss(dataset.sensors[i].info.serial, miss, last_time_[i])));
 }
@@ -92,6 +105,7 @@ void McapDatasetWriter::add_miss(const Dataset& dataset, int sensor, const Datas
 void McapDatasetWriter::finish(const Dataset& dataset) {
     if (finished_) return;
     start(dataset);
+    describe(dataset, 0);
     writer_->finish();
     finished_ = true;
     if (std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0)

@@ -10,6 +10,7 @@
 #include "io/cdr.hpp"
 #include "io/limits.hpp"
 #include "sensor/ros2_names.hpp"
+#include "vkfuse/core/fusion.hpp"
 
 namespace vkfuse::sensor::recording {
 namespace {
@@ -76,6 +77,29 @@ std::optional<DecodedFrame> decode_frame(std::string_view payload, std::string& 
     f.height = int(height);
     f.width = int(width);
     return f;
+}
+
+std::string encode_rig(const Dataset& dataset, std::uint64_t time_ns) {
+    io::cdr::Writer w;
+    w.header(time_ns, "");
+    w.count(dataset.sensors.size());
+    for (const DatasetSensorRecord& record : dataset.sensors) {
+        const SensorInfo& s = record.info;
+        w.str(s.serial).str(ros2_topic_token(s.serial)).str(s.model).num(s.fps);
+        w.num(std::uint32_t(s.width)).num(std::uint32_t(s.height)).str(s.leds.model).count(s.leds.names.size());
+        for (const std::string& name : s.leds.names) w.str(name);
+        w.num(std::uint16_t(s.leds.max_level));
+    }
+    const DatasetRun* run = dataset.run ? &*dataset.run : nullptr;
+    w.count(run ? run->sequence.size() : 0);
+    if (run)
+        for (const Illumination& setting : run->sequence) {
+            w.count(setting.levels().size());
+            for (int level : setting.levels()) w.num(std::uint8_t(level));
+        }
+    w.str(run ? method_label(run->fusion) : "").num(std::uint8_t(0)).count(0).str("").num(0.0);
+    w.num(std::uint32_t(run ? run->background_frames : 0)).num(std::uint8_t(1));
+    return w.take();
 }
 
 std::string encode_miss(const std::string& serial, const DatasetMiss& miss, std::uint64_t time_ns) {

@@ -3,6 +3,7 @@
 //
 //   /vkfuse/<token>/frame    vkfuse_msgs/msg/RecordedFrame  every frame, backgrounds included
 //   /vkfuse/<token>/metrics  vkfuse_msgs/msg/FusionMetrics  the cycles the sensor missed
+//   /vkfuse/rig              vkfuse_msgs/msg/RigDescription once, at the first frame's time
 //
 // and one Metadata record, "vkfuse.dataset", holding the dataset's manifest
 // (docs: "Datasets") without its frames: the sensors, the source, the run.
@@ -18,6 +19,8 @@ namespace vkfuse::sensor::recording {
 
 inline constexpr std::string_view kFrameType = "vkfuse_msgs/msg/RecordedFrame";
 inline constexpr std::string_view kMetricsType = "vkfuse_msgs/msg/FusionMetrics";
+inline constexpr std::string_view kRigType = "vkfuse_msgs/msg/RigDescription";
+inline constexpr std::string_view kRigTopic = "/vkfuse/rig";
 inline constexpr std::string_view kMetadataName = "vkfuse.dataset";
 inline constexpr std::string_view kManifestKey = "manifest";
 
@@ -45,6 +48,13 @@ struct DecodedFrame {
 // Every field checked (sizes within the payload, rgb8, step, pixel count);
 // nullopt with why set when the payload is not a RecordedFrame this reader takes.
 std::optional<DecodedFrame> decode_frame(std::string_view payload, std::string& why);
+
+// RigDescription, CDR, as `vkfuse run --publish` describes its rig: the
+// sensors, and the run's sequence, method and background frames (empty for a
+// dataset without a run). fused false and frames true: a recording holds
+// each sensor's frames, backgrounds included, and no fused image; metrics and
+// skip empty, since its replay chooses them.
+std::string encode_rig(const Dataset& dataset, std::uint64_t time_ns);
 
 // FusionMetrics for a cycle the sensor missed (status TIMEOUT or FAILED, NaN metrics).
 std::string encode_miss(const std::string& serial, const DatasetMiss& miss, std::uint64_t time_ns);

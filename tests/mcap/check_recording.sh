@@ -31,6 +31,11 @@ diff -r -x summary.json live replay >/dev/null || fail "the replay fused other i
 node "$work/read_recording.mjs" rig.mcap >rig.txt || fail "@mcap/core refused rig.mcap"
 tail -2 rig.txt
 grep -q '^sensors SIM-0001,SIM-0002,SIM-0003,SIM-0004 source "vkfuse run"$' rig.txt || fail "the manifest is not the run's"
+# /vkfuse/rig: once, the four sensors and the run's sequence and method.
+sensors=$(for i in 1 2 3 4; do printf 'SIM-000%s:SIM_000%s:DIGIT_(simulated):320x240:DIGIT:r/g/b:15,' $i $i; done)
+[ "$(grep -c '^rig ' rig.txt)" = 1 ] &&
+    grep -qx "rig ${sensors%,} 15,15,15+0,15,0 wavelet/bior4.4 fused=false frames=true background_frames=[1-9][0-9]*" rig.txt ||
+    { grep '^rig ' rig.txt; fail "/vkfuse/rig does not describe the run's rig"; }
 # Every sensor: cycles 0..59, each with one frame of each setting of the sequence.
 awk '$1 == "frame" && $5 >= 0 { n[$2 " " $5]++; s[$2 " " $5 " " $8]++ }
      END { if (length(n) != 240) exit 1; for (k in n) if (n[k] != 2) exit 1; if (length(s) != 480) exit 1 }' rig.txt ||

@@ -6,6 +6,7 @@
 // line per message, sorted:
 //   frame SERIAL PRESSED BACKGROUND CYCLE INDEX TIMESTAMP LEVELS WxH ENCODING STEP BYTESUM
 //   miss SERIAL CYCLE STATUS ERROR
+//   rig SERIAL:TOKEN:MODEL:WxH:LED_MODEL:CHANNELS:MAX,... SETTINGS METHOD fused=F frames=F background_frames=N
 // then "messages N chunks C compression NAME". Exits non-zero with the
 // reason on anything it refuses, or when the two readings disagree.
 //
@@ -42,6 +43,15 @@ const line = (channel, schema, m) => {
     return `frame ${img.header.frame_id} ${msg.pressed} ${msg.background} ${msg.cycle} ${msg.frame.index} ` +
            `${msg.frame.timestamp} ${Array.from(msg.frame.setting.levels).join(",")} ${img.width}x${img.height} ` +
            `${img.encoding} ${img.step} ${sha}`;
+  }
+  if (schema.name === "vkfuse_msgs/msg/RigDescription") {
+    const stamp = BigInt(msg.header.stamp.sec) * 1000000000n + BigInt(msg.header.stamp.nanosec);
+    if (stamp !== m.logTime) throw new Error(`${file}: ${channel.topic}: stamp ${stamp} but log time ${m.logTime}`);
+    const sensors = msg.sensors.map((s) => [s.serial, s.token, s.model.replaceAll(" ", "_"), `${s.width}x${s.height}`,
+                                            s.led_model, s.led_channels.join("/"), s.led_max_level].join(":"));
+    const settings = msg.settings.map((s) => Array.from(s.levels).join(",")).join("+");
+    return `rig ${sensors.join(",")} ${settings || "-"} ${msg.method || "-"} fused=${msg.fused} frames=${msg.frames} ` +
+           `background_frames=${msg.background_frames}`;
   }
   if (schema.name === "vkfuse_msgs/msg/FusionMetrics")
     return `miss ${msg.serial} ${msg.cycle} ${msg.status} ${JSON.stringify(msg.error)}`;
