@@ -29,6 +29,8 @@ TEST(CliRun, SimulatedCoinWithOutputs) {
     // its result (--skip tiles, the default, reuses as static does).
     EXPECT_TRUE(has(r.out, "\"cycles\": 3, \"sensors\": 1, \"submits\": 1, \"fused\": 3,")) << r.out;
     EXPECT_TRUE(has(r.out, "\"switch_timing\": {\"SIM-0001\": {\"frame_period_s\": ")) << r.out;
+    // A virtual clock's switch requests are never late: the normal scheduler.
+    EXPECT_TRUE(has(r.out, "\"switch_scheduling\": {\"SIM-0001\": \"normal\"}")) << r.out;
     const std::vector<std::string> metrics = lines_of(read_bytes(tmp.file("out/metrics.jsonl")));
     ASSERT_EQ(metrics.size(), 3u);
     for (const std::string& m : metrics) {

@@ -27,12 +27,19 @@ Switcher make_switcher(const CaptureJob& job) {
     Sensor& sensor = *job.sensor.sensor;
     if (job.config->judging == FrameJudging::Label) return Switcher::labelled(sensor);
     if (!job.sensor.clock) throw Error(ErrorKind::InvalidArgument, "judging frames by timing needs the sensor's clock");
-    const SwitchTiming timing = measure_switch_timing(sensor, *job.sensor.clock, job.config->calibration);
+    // A virtual clock's requests are never late.
+    const int priority = job.sensor.clock->passes_on_its_own() ? job.config->switch_priority : 0;
+    SwitchCalibration calibration = job.config->calibration;
+    calibration.request_priority = priority;
+    const SwitchTiming timing = measure_switch_timing(sensor, *job.sensor.clock, calibration);
+    Switcher switcher(sensor, job.sensor.clock, timing);
+    const std::string scheduling = switcher.set_switch_priority(priority);
     {
         std::lock_guard lock(job.hub->mutex);
         job.hub->slots[job.index].timing = timing;
+        job.hub->slots[job.index].switch_scheduling = scheduling;
     }
-    return Switcher(sensor, job.sensor.clock, timing);
+    return switcher;
 }
 
 // One mean per distinct setting of the sequence, with nothing pressed.
@@ -72,12 +79,12 @@ std::optional<SwitchTiming> slot_timing(Hub& hub, const SensorSlot& slot) {
     return slot.timing;
 }
 
-// Hands one cycle to the rig, waiting while the previous one is still there.
+// Hands one cycle to the rig, waiting while its mailbox is full.
 bool deliver(Hub& hub, SensorSlot& slot, std::vector<Frame> frames) {
     std::unique_lock lock(hub.mutex);
-    hub.changed.wait(lock, [&] { return hub.stop || !slot.ready; });
+    hub.changed.wait(lock, [&] { return hub.stop || slot.ready.size() < kMailboxCycles; });
     if (hub.stop) return false;
-    slot.ready = std::move(frames);
+    slot.ready.push_back(std::move(frames));
     slot.lost.reset();
     hub.changed.notify_all();
     return true;
@@ -104,25 +111,30 @@ void run_capture(const CaptureJob& job) {
     const RigConfig& cfg = *job.config;
     const bool may_watch = cfg.watch_when_idle && cfg.skip.policy != SkipPolicy::Off &&
                            cfg.judging == FrameJudging::Timing && cfg.sequence.size() > 1;
-    // Whether delivery n watches depends on the verdicts alone, never on how
-    // far the rig has got, so a run on virtual clocks stays deterministic:
-    // after a watch cycle, on its verdict (a change is followed at once by a
-    // whole sequence); after a whole cycle, on the verdict two back, and only
-    // where that one was idle also on the last (the capture of a busy sensor
-    // keeps running a cycle ahead of its fusion).
+    // Whether delivery n watches depends on the verdicts: after a watch
+    // cycle, on its verdict (a change is followed at once by a whole
+    // sequence); after a whole cycle, on the verdict two back, and only where
+    // that one was idle also on the last (the capture of a busy sensor keeps
+    // running a cycle ahead of its fusion). On a virtual clock it waits for
+    // them, so that the run stays deterministic. On a clock that passes on its
+    // own it never waits for a whole cycle's: a verdict not yet given counts
+    // as not idle, since a capture held back past its next switch request
+    // loses frames (and the watch that waiting could bring is a cycle late).
+    const bool wait_for_verdicts = !job.sensor.clock || !job.sensor.clock->passes_on_its_own();
     bool last_watched = false;
     for (std::uint64_t n = 0;;) {
         bool watch = false;
         if (may_watch) {
             std::unique_lock lock(hub.mutex);
-            auto verdict = [&](std::uint64_t d) {
+            auto verdict = [&](std::uint64_t d, bool wait) {
+                if (!wait && slot.judged <= d) return false;
                 hub.changed.wait(lock, [&] { return hub.stop || slot.judged > d; });
                 return !hub.stop && d >= slot.verdicts_from && slot.idle_verdict(d);
             };
             if (last_watched)
-                watch = verdict(n - 1);
+                watch = verdict(n - 1, true);
             else if (n >= 2)
-                watch = verdict(n - 2) && verdict(n - 1);
+                watch = verdict(n - 2, wait_for_verdicts) && verdict(n - 1, wait_for_verdicts);
             if (hub.stop) return;
         }
         std::vector<Frame> frames;

@@ -4,6 +4,7 @@
 #include <array>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -18,10 +19,18 @@ namespace vkfuse::rig {
 
 // One sensor's mailbox and state. Written by its capture thread, read by the
 // rig, always under Hub::mutex.
+inline constexpr std::size_t kMailboxCycles = 3;
+
 struct SensorSlot {
     std::string serial;
-    std::optional<std::vector<Frame>> ready;  // a complete cycle the rig has not taken yet
+    // Complete cycles the rig has not taken yet, oldest first; at most
+    // kMailboxCycles, so that a capture thread goes on switching while the
+    // rig waits for another sensor or for the CPU (a thread held back past
+    // its next switch request loses a frame, and its lateness then holds up
+    // every sensor of the cycle).
+    std::deque<std::vector<Frame>> ready;
     std::optional<SwitchTiming> timing;
+    std::string switch_scheduling;  // Switcher::set_switch_priority's answer
     bool background_done = false;
     bool background_applied = false;  // rig side: handed to the fusion engine
     std::vector<Image> background;    // per slot of the sequence

@@ -48,6 +48,8 @@ void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors, c
     if (cfg.cycles_in_flight != 1 && cfg.cycles_in_flight != 2)
         throw Error(ErrorKind::InvalidArgument, "rig: cycles_in_flight must be 1 or 2, got " +
                                                     std::to_string(cfg.cycles_in_flight));
+    if (cfg.switch_priority < 0 || cfg.switch_priority > 99)
+        throw Error(ErrorKind::InvalidArgument, "rig: switch_priority must be 0..99, got " + std::to_string(cfg.switch_priority));
     if (cfg.cycles_in_flight == 2 && !context)
         throw Error(ErrorKind::InvalidArgument, "rig: 2 cycles in flight need a GPU context (the CPU path fuses "
                                                 "each cycle as it is taken)");
@@ -167,7 +169,7 @@ bool Rig::Impl::cycle_ready() const {
         const rig::SensorSlot& slot = hub->slots[i];
         if (slot.failed || slot.lost) continue;
         any_alive = true;
-        if (slot.ready)
+        if (!slot.ready.empty())
             any_ready = true;
         else if (!lagging[i] || replayed[i])
             return false;
@@ -301,8 +303,8 @@ void Rig::start() {
     im.apply_new_backgrounds();
 }
 
-// Takes every mailbox that is full once the cycle is ready (or the timeout
-// passed), and says what happened to each sensor.
+// Takes the oldest cycle of every mailbox once the cycle is ready (or the
+// timeout passed), and says what happened to each sensor.
 void Rig::Impl::take_cycle(CycleResult& result) {
     std::unique_lock lock(hub->mutex);
     hub->changed.wait_until(lock, after(cfg->cycle_timeout_s), [&] { return cycle_ready(); });
@@ -310,13 +312,14 @@ void Rig::Impl::take_cycle(CycleResult& result) {
         rig::SensorSlot& slot = hub->slots[i];
         SensorCycle& r = result.sensors[i];
         r.serial = slot.serial;
-        if (slot.ready && !slot.ready->empty() && slot.ready->front().recorded_cycle >= 0) replayed[i] = true;
-        if (slot.ready && for_a_later_cycle(*slot.ready, result.cycle)) {
+        if (!slot.ready.empty() && !slot.ready.front().empty() && slot.ready.front().front().recorded_cycle >= 0)
+            replayed[i] = true;
+        if (!slot.ready.empty() && for_a_later_cycle(slot.ready.front(), result.cycle)) {
             r.status = SensorStatus::Timeout;
             r.error = slot.serial + ": no frames recorded for cycle " + std::to_string(result.cycle);
-        } else if (slot.ready) {
-            r.frames = std::move(*slot.ready);
-            slot.ready.reset();
+        } else if (!slot.ready.empty()) {
+            r.frames = std::move(slot.ready.front());
+            slot.ready.pop_front();
         } else if (slot.failed || slot.lost) {
             r.status = slot.failed ? SensorStatus::Failed : *slot.lost;
             r.error = slot.error;
@@ -405,6 +408,11 @@ std::optional<SwitchTiming> Rig::timing(std::size_t sensor) const {
     return impl_->hub->slots.at(sensor).timing;
 }
 
+std::string Rig::switch_scheduling(std::size_t sensor) const {
+    std::lock_guard lock(impl_->hub->mutex);
+    return impl_->hub->slots.at(sensor).switch_scheduling;
+}
+
 bool Rig::all_failed() const {
     // Two cycles in flight: a cycle taken ahead with a sensor's frames in it
     // is still to be returned.
@@ -413,7 +421,7 @@ bool Rig::all_failed() const {
             if (s.status == SensorStatus::Ok) return false;
     std::lock_guard lock(impl_->hub->mutex);
     for (const rig::SensorSlot& s : impl_->hub->slots)
-        if (!s.failed || s.ready) return false;  // a cycle delivered before failing still counts
+        if (!s.failed || !s.ready.empty()) return false;  // a cycle delivered before failing still counts
     return true;
 }
 

@@ -53,6 +53,8 @@ public:
         now_ = std::max(now_, seconds);
     }
 
+    bool passes_on_its_own() const override { return false; }
+
 private:
     mutable std::mutex mutex_;
     double now_ = 0;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sensor/row_profile.hpp"
+#include "sensor/realtime_section.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/switching.hpp"
 
@@ -112,12 +113,22 @@ struct Bounds {
 // One switch: request `to` at a chosen phase, grab until the first frame lit
 // entirely by it (matching its steady profile). That frame bounds the latency;
 // the last frame still entirely old, which ended before the switch landed,
-// bounds the clearance.
-void observe_switch(Observer& obs, const sensor::LightingJudge& judge, const Illumination& to, double phase_delay,
-                    const SwitchCalibration& opt, Bounds& b) {
-    obs.clock().wait_until(obs.clock().now() + phase_delay);
-    double last_old_ts = obs.last_ts();  // the settled frame before the request
-    const double t = obs.request(to);
+// bounds the clearance. The phase is a fraction of the frame period after a
+// frame's timestamp, on the grid of the last frame grabbed, so that however
+// late a busy host lets this thread have that frame, the phases land where
+// they were spread (bunched phases give looser bounds than the sensor's).
+void observe_switch(Observer& obs, const sensor::LightingJudge& judge, const Illumination& to, double phase,
+                    double period, const SwitchCalibration& opt, Bounds& b) {
+    double last_old_ts = 0, t = 0;
+    {
+        const sensor::RealtimeSection punctual(opt.request_priority);
+        const double now = obs.clock().now(), grid = obs.last_ts();
+        double at = grid + (std::floor((now - grid) / period) + phase) * period;
+        if (at < now) at += period;
+        obs.clock().wait_until(at);
+        last_old_ts = obs.last_ts();  // the settled frame before the request
+        t = obs.request(to);
+    }
     for (int seen = 1;; ++seen) {
         const Frame f = obs.grab();
         if (f.timestamp - t > opt.timeout_s && seen > kMinFramesBeforeGivingUp)
@@ -159,7 +170,7 @@ SwitchTiming measure_switch_timing(Sensor& sensor, Clock& clock, const SwitchCal
         const double phase = std::fmod(double(i / 2) * 0.6180339887498949, 1.0);
         const double period = obs.period_and_jitter(nominal).first;
         const bool going_dark = i % 2 == 0;  // the LEDs are on after settling
-        observe_switch(obs, going_dark ? to_off : to_on, going_dark ? off : on, phase * period, opt,
+        observe_switch(obs, going_dark ? to_off : to_on, going_dark ? off : on, phase, period, opt,
                        going_dark ? to_dark : to_bright);
     }
     SwitchTiming t;

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "sensor/realtime_section.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/switching.hpp"
 
@@ -48,6 +49,7 @@ struct Switcher::Impl {
     SwitchTiming timing;
     std::string serial;
     std::uint64_t grabbed = 0, requests = 0;
+    int switch_priority = 0;  // SCHED_FIFO around each timed request; 0: none
 
     // Timing-mode scheduler state, carried across cycles so the first request
     // of a cycle can overlap the last frame of the one before.
@@ -181,8 +183,12 @@ void Switcher::Impl::make_request(const Key& key) {
         throw Error(ErrorKind::Device, serial + ": no frame lit entirely by " + sequence[key.slot].to_string() +
                                            " after " + std::to_string(kMaxAttempts) +
                                            " requests (frames late or dropped)");
-    clock->wait_until(planned);
-    const double t = request(sequence[key.slot]);
+    double t = 0;
+    {
+        const sensor::RealtimeSection punctual(switch_priority);
+        clock->wait_until(planned);
+        t = request(sequence[key.slot]);
+    }
     // The previous request's frame must finish before this switch can land.
     for (Pending& p : pending)
         if (p.window_end == kNever) p.window_end = timing.last_untouched(t);
@@ -246,6 +252,17 @@ std::vector<Frame> Switcher::Impl::cycle_by_timing() {
         it = it->first.cycle == next_to_return ? attempts.erase(it) : std::next(it);
     ++next_to_return;
     return out;
+}
+
+std::string Switcher::set_switch_priority(int priority) {
+    if (priority < 0 || priority > 99)
+        throw Error(ErrorKind::InvalidArgument, impl_->serial + ": switch priority " + std::to_string(priority) + " (expected 0..99)");
+    impl_->switch_priority = 0;
+    if (priority == 0) return "normal";
+    const std::string refused = sensor::realtime_refusal(priority);
+    if (!refused.empty()) return "normal (fifo " + std::to_string(priority) + " refused: " + refused + ")";
+    impl_->switch_priority = priority;
+    return "fifo " + std::to_string(priority);
 }
 
 Switcher::Switcher(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

@@ -193,6 +193,10 @@ void background_options(const Args& args, RunOptions& o) {
             fail("--cycles-in-flight 2: needs --skip off (a skipping plan keeps its references and held results "
                  "once, for 1 cycle in flight)");
     }
+    if (auto v = args.value("--switch-priority")) {
+        o.switch_priority = parse_count("--switch-priority", *v);
+        if (o.switch_priority > 99) fail("--switch-priority " + *v + ": expected 0..99");
+    }
     metric_options(args, o);
 }
 

@@ -94,6 +94,9 @@ std::string RunStats::summary_json(const Rig& rig, const std::string& source) co
     std::string timings, errors;
     for (std::size_t i = 0; i < rig.sensors(); ++i)
         timings += (i ? ", " : "") + json_string(rig.serial(i)) + ": " + timing_json(rig.timing(i));
+    std::string scheduling;
+    for (std::size_t i = 0; i < rig.sensors(); ++i)
+        scheduling += (i ? ", " : "") + json_string(rig.serial(i)) + ": " + json_string(rig.switch_scheduling(i));
     for (const std::string& e : errors_) errors += (errors.empty() ? "" : ", ") + json_string(e);
     return "{\"cycles\": " + std::to_string(cycles_) + ", \"sensors\": " + std::to_string(sensors_.size()) +
            ", \"submits\": " + std::to_string(rig.submits()) + ", \"fused\": " + std::to_string(fused_) +
@@ -107,7 +110,7 @@ std::string RunStats::summary_json(const Rig& rig, const std::string& source) co
            ", \"threshold\": " + json_number(skip_.threshold) +
            ", \"idle_fraction\": " + json_number(double(idle_) / double(std::max<std::uint64_t>(fused_, 1))) +
            ", \"fused_fraction\": " + json_number(fused_ ? fused_fraction_sum_ / double(fused_) : 1.0) +
-           "}, \"switch_timing\": {" + timings + "}" + source + ", \"errors\": [" + errors + "]}";
+           "}, \"switch_timing\": {" + timings + "}, \"switch_scheduling\": {" + scheduling + "}" + source + ", \"errors\": [" + errors + "]}";
 }
 
 }  // namespace vkfuse::cli

@@ -72,6 +72,13 @@ struct RigConfig {
     // and held results once, for 1 cycle in flight). 1: each next() is one
     // round trip.
     int cycles_in_flight = 1;
+    // Frames judged by timing: each sensor's LED switch requests run under
+    // real-time scheduling (SCHED_FIFO) at this priority, 1..99, for the
+    // moment each takes (Switcher::set_switch_priority says why); 0: the
+    // normal scheduler. Only on a clock that passes on its own
+    // (Clock::passes_on_its_own): a virtual clock's requests are never late. Refused (no CAP_SYS_NICE or RLIMIT_RTPRIO),
+    // the rig runs as with 0 and switch_scheduling() says so.
+    int switch_priority = 0;
 
     // Called on a sensor's capture thread with each setting's background
     // frames (e.g. to record them), then once when its background is done
@@ -145,6 +152,10 @@ public:
     std::string serial(std::size_t sensor) const;
     // What calibration measured (nullopt when judging by label or not yet done).
     std::optional<SwitchTiming> timing(std::size_t sensor) const;
+    // How its LED switch requests run (RigConfig::switch_priority): "fifo N",
+    // "normal", or "normal (fifo N refused: why)"; empty until calibrated,
+    // and when judging by label.
+    std::string switch_scheduling(std::size_t sensor) const;
     // True when every sensor has failed and no cycle is left to take (or, with
     // two cycles in flight, to return): nothing more will come.
     bool all_failed() const;

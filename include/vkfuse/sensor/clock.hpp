@@ -10,6 +10,10 @@ public:
     virtual ~Clock() = default;
     virtual double now() const = 0;             // seconds since the clock's start
     virtual void wait_until(double seconds) = 0;  // returns once now() >= seconds
+    // True (the default) when time passes on its own, so a thread held back
+    // misses what happens meanwhile; false for a virtual clock, whose time
+    // waits for its threads (and whose runs are therefore deterministic).
+    virtual bool passes_on_its_own() const { return true; }
 };
 
 // std::chrono::steady_clock from construction; wait_until sleeps.

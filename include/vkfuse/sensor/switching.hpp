@@ -46,6 +46,11 @@ struct SwitchCalibration {
     // "unchanged" (noise); the timing bounds are widened by the same fraction
     // of a frame period, so a slightly touched row can never pass as clean.
     double tolerance = 0.03;
+    // Each switch's wait for its phase and its request run under SCHED_FIFO
+    // at this priority (Switcher::set_switch_priority says why; 0: the normal
+    // scheduler): a thread a busy host wakes late bunches the phases
+    // together, and the bounds they give come out looser than the sensor's.
+    int request_priority = 0;
 };
 
 // Toggles the LEDs between all off and all at maximum (the two most different
@@ -88,6 +93,16 @@ public:
     // again. Throws Error naming the serial after repeated misses. Call with
     // the same sequence every time.
     std::vector<Frame> next_cycle(const IlluminationSequence& sequence);
+
+    // By timing: each LED switch request, and the wait for its moment, runs
+    // under real-time scheduling (SCHED_FIFO at priority, 1..99) on the
+    // calling thread, and nothing else it does. A request has about a
+    // millisecond of slack (SwitchTiming::clearance); a busy host's scheduler
+    // wakes a normal thread later than that, and each late request costs a
+    // frame. 0 (the default): the normal scheduler. Returns how requests run:
+    // "fifo N", "normal", or "normal (fifo N refused: why)" when the thread
+    // may not (no CAP_SYS_NICE and RLIMIT_RTPRIO below N).
+    std::string set_switch_priority(int priority);
 
     // Frames grabbed and requests made so far (what a cycle cost).
     std::uint64_t frames_grabbed() const;

@@ -1,0 +1,41 @@
+// RealtimeSection (sensor/realtime_section.hpp), through pthread_setschedparam
+// on the calling thread.
+#include "sensor/realtime_section.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <cstring>
+
+namespace vkfuse::sensor {
+
+std::string realtime_refusal(int priority) {
+    if (priority < 1 || priority > 99) return "priority " + std::to_string(priority) + " is outside 1..99";
+    int policy = 0;
+    sched_param own{};
+    if (const int e = pthread_getschedparam(pthread_self(), &policy, &own)) return std::strerror(e);
+    sched_param wanted{};
+    wanted.sched_priority = priority;
+    if (const int e = pthread_setschedparam(pthread_self(), SCHED_FIFO, &wanted)) return std::strerror(e);
+    pthread_setschedparam(pthread_self(), policy, &own);
+    return "";
+}
+
+RealtimeSection::RealtimeSection(int priority) {
+    if (priority <= 0) return;
+    sched_param own{};
+    if (pthread_getschedparam(pthread_self(), &policy_, &own) != 0) return;
+    priority_ = own.sched_priority;
+    sched_param wanted{};
+    wanted.sched_priority = priority;
+    raised_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &wanted) == 0;
+}
+
+RealtimeSection::~RealtimeSection() {
+    if (!raised_) return;
+    sched_param own{};
+    own.sched_priority = priority_;
+    pthread_setschedparam(pthread_self(), policy_, &own);
+}
+
+}  // namespace vkfuse::sensor
