@@ -10,12 +10,14 @@
 
 #include <pybind11/stl.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 
 #include "arrays.hpp"
 #include "commands.hpp"
 #include "run/run_session.hpp"
+#include "sensors.hpp"
 #include "shared.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/rig/rig.hpp"
@@ -23,12 +25,6 @@
 
 namespace vkfuse::python {
 namespace {
-
-py::array_t<std::uint8_t> pixels_of(const Frame& f) {
-    py::array_t<std::uint8_t> out({py::ssize_t(f.height), py::ssize_t(f.width), py::ssize_t(3)});
-    std::copy(f.pixels.begin(), f.pixels.end(), out.mutable_data());
-    return out;
-}
 
 py::tuple levels_of(const Illumination& s) {
     py::tuple t(s.levels().size());
@@ -58,7 +54,7 @@ public:
     }
 
     py::dict frame(const std::string& serial, const std::string& object, std::size_t i) const {
-        const std::vector<const DatasetFrame*> frames = take_frames(serial, object);
+        const std::vector<const DatasetFrame*>& frames = take_frames(serial, object);
         if (i >= frames.size())
             throw Error(ErrorKind::InvalidArgument, "index " + std::to_string(i) + ": the take has " +
                                                         std::to_string(frames.size()) + " frames");
@@ -79,7 +75,10 @@ public:
     }
 
 private:
-    std::vector<const DatasetFrame*> take_frames(const std::string& serial, const std::string& object) const {
+    // Built once per take: a walk over a take's frames asks for each in turn.
+    const std::vector<const DatasetFrame*>& take_frames(const std::string& serial, const std::string& object) const {
+        const auto key = std::make_pair(serial, object);
+        if (const auto it = takes_.find(key); it != takes_.end()) return it->second;
         const DatasetSensorRecord& record = dataset_->sensor(serial);
         std::vector<const DatasetFrame*> out;
         bool found = false;
@@ -90,10 +89,12 @@ private:
         }
         if (!found)
             throw Error(ErrorKind::InvalidArgument, dataset_->directory + ": sensor " + serial + " has no take of " + object);
-        return out;
+        return takes_.emplace(key, std::move(out)).first->second;
     }
 
-    std::shared_ptr<const Dataset> dataset_;
+    std::shared_ptr<const Dataset> dataset_;  // never changes: the pointers below stay valid
+    // (serial, object) -> its frames; touched only with the GIL held.
+    mutable std::map<std::pair<std::string, std::string>, std::vector<const DatasetFrame*>> takes_;
 };
 
 class PyRig {

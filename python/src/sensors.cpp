@@ -25,12 +25,6 @@ Illumination setting_of(const std::vector<int>& levels) {
     return Illumination(levels);
 }
 
-py::array_t<std::uint8_t> pixels_of(const Frame& f) {
-    py::array_t<std::uint8_t> out({py::ssize_t(f.height), py::ssize_t(f.width), py::ssize_t(3)});
-    std::copy(f.pixels.begin(), f.pixels.end(), out.mutable_data());
-    return out;
-}
-
 class PySimDigit {
 public:
     PySimDigit(const std::string& object, bool vga, std::uint64_t seed, double press_depth_mm, double x, double y,
@@ -89,6 +83,12 @@ private:
 };
 
 }  // namespace
+
+py::array_t<std::uint8_t> pixels_of(const Frame& f) {
+    py::array_t<std::uint8_t> out({py::ssize_t(f.height), py::ssize_t(f.width), py::ssize_t(3)});
+    std::copy(f.pixels.begin(), f.pixels.end(), out.mutable_data());
+    return out;
+}
 
 void def_sensors(py::module_& m) {
     py::class_<PySimDigit>(m, "SimDigit", "The simulated DIGIT (gel, three LEDs, an object pressed in), on a virtual clock.")
