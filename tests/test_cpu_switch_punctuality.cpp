@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "expect_error.hpp"
+#include "sensor/realtime_section.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 #include "vkfuse/sensor/switching.hpp"
 
@@ -107,6 +108,29 @@ TEST(SwitchPunctuality, OnlyRequestsRunInRealTime) {
     for (int policy : b.sensor->request_policies) EXPECT_EQ(policy, allowed ? SCHED_FIFO : SCHED_OTHER);
     for (int policy : b.sensor->grab_policies) EXPECT_EQ(policy, SCHED_OTHER);
     EXPECT_EQ(sched_getscheduler(0), SCHED_OTHER);
+}
+
+// A thread already real-time at a higher priority keeps it through a
+// section (lowering it for the request would make the request the laggard).
+TEST(SwitchPunctuality, AThreadAlreadyRealTimeAboveKeepsItsPriority) {
+    if (!fifo_allowed(20)) GTEST_SKIP() << "SCHED_FIFO is not allowed to this process";
+    int policy = -1, inside = -1, after = -1;
+    std::thread([&] {
+        sched_param p{};
+        p.sched_priority = 20;
+        pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
+        sched_param q{};
+        {
+            const sensor::RealtimeSection section(5);
+            pthread_getschedparam(pthread_self(), &policy, &q);
+            inside = q.sched_priority;
+        }
+        pthread_getschedparam(pthread_self(), &policy, &q);
+        after = q.sched_priority;
+    }).join();
+    EXPECT_EQ(policy, SCHED_FIFO);
+    EXPECT_EQ(inside, 20);
+    EXPECT_EQ(after, 20);
 }
 
 TEST(SwitchPunctuality, PrioritiesOutsideTheRangeAreRefused) {

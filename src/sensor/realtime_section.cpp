@@ -26,6 +26,8 @@ RealtimeSection::RealtimeSection(int priority) {
     sched_param own{};
     if (pthread_getschedparam(pthread_self(), &policy_, &own) != 0) return;
     priority_ = own.sched_priority;
+    // A thread already real-time at this priority or above keeps its own.
+    if ((policy_ == SCHED_FIFO || policy_ == SCHED_RR) && priority_ >= priority) return;
     sched_param wanted{};
     wanted.sched_priority = priority;
     raised_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &wanted) == 0;

@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
-#include "sensor/row_profile.hpp"
 #include "sensor/realtime_section.hpp"
+#include "sensor/row_profile.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/sensor/switching.hpp"
 
