@@ -11,26 +11,25 @@ namespace vkfuse::sensor {
 
 std::string realtime_refusal(int priority) {
     if (priority < 1 || priority > 99) return "priority " + std::to_string(priority) + " is outside 1..99";
-    int policy = 0;
-    sched_param own{};
-    if (const int e = pthread_getschedparam(pthread_self(), &policy, &own)) return std::strerror(e);
-    sched_param wanted{};
-    wanted.sched_priority = priority;
-    if (const int e = pthread_setschedparam(pthread_self(), SCHED_FIFO, &wanted)) return std::strerror(e);
-    pthread_setschedparam(pthread_self(), policy, &own);
-    return "";
+    return RealtimeSection(priority).refusal();
 }
 
 RealtimeSection::RealtimeSection(int priority) {
     if (priority <= 0) return;
     sched_param own{};
-    if (pthread_getschedparam(pthread_self(), &policy_, &own) != 0) return;
+    if (const int e = pthread_getschedparam(pthread_self(), &policy_, &own)) {
+        refusal_ = std::strerror(e);
+        return;
+    }
     priority_ = own.sched_priority;
     // A thread already real-time at this priority or above keeps its own.
     if ((policy_ == SCHED_FIFO || policy_ == SCHED_RR) && priority_ >= priority) return;
     sched_param wanted{};
     wanted.sched_priority = priority;
-    raised_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &wanted) == 0;
+    if (const int e = pthread_setschedparam(pthread_self(), SCHED_FIFO, &wanted))
+        refusal_ = std::strerror(e);
+    else
+        raised_ = true;
 }
 
 RealtimeSection::~RealtimeSection() {

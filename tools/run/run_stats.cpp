@@ -91,12 +91,12 @@ std::string RunStats::summary_json(const Rig& rig, const std::string& source) co
         fps_min = *std::min_element(fps.begin(), fps.end());
         for (double f : fps) fps_mean += f / double(fps.size());
     }
-    std::string timings, errors;
-    for (std::size_t i = 0; i < rig.sensors(); ++i)
-        timings += (i ? ", " : "") + json_string(rig.serial(i)) + ": " + timing_json(rig.timing(i));
-    std::string scheduling;
-    for (std::size_t i = 0; i < rig.sensors(); ++i)
-        scheduling += (i ? ", " : "") + json_string(rig.serial(i)) + ": " + json_string(rig.switch_scheduling(i));
+    std::string timings, scheduling, errors;
+    for (std::size_t i = 0; i < rig.sensors(); ++i) {
+        const std::string key = (i ? ", " : "") + json_string(rig.serial(i)) + ": ";
+        timings += key + timing_json(rig.timing(i));
+        scheduling += key + json_string(rig.switch_scheduling(i));
+    }
     for (const std::string& e : errors_) errors += (errors.empty() ? "" : ", ") + json_string(e);
     return "{\"cycles\": " + std::to_string(cycles_) + ", \"sensors\": " + std::to_string(sensors_.size()) +
            ", \"submits\": " + std::to_string(rig.submits()) + ", \"fused\": " + std::to_string(fused_) +
