@@ -18,7 +18,8 @@ struct SimRigSensor {
 // A simulated DIGIT on its own virtual clock, serial SIM-%04d of number, with
 // its ground truth logged; the camera's exposure is locked, as a rig sets it.
 inline SimRigSensor sim_sensor(int number, double latency_s, const std::string& object = "coin",
-                               bool camera_auto = false) {
+                               bool camera_auto = false, SimMotion motion = SimMotion::Still,
+                               double motion_period_s = 2.0) {
     SimRigSensor s;
     s.clock = make_virtual_clock();
     SimDigitOptions o;
@@ -26,6 +27,8 @@ inline SimRigSensor sim_sensor(int number, double latency_s, const std::string& 
     o.led_latency_s = latency_s;
     o.object = object;
     o.camera_auto = camera_auto;
+    o.motion = motion;
+    o.motion_period_s = motion_period_s;
     o.clock = s.clock;
     char serial[16];
     std::snprintf(serial, sizeof serial, "SIM-%04d", number);

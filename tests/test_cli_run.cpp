@@ -146,6 +146,34 @@ TEST(CliRun, ReplayReproducesTheRecordedRun) {
     expect_same_outputs(tmp, "live", "again");
 }
 
+// --window sliding: a fused image per clean frame (K per cycle); the
+// recording holds every window whole, each frame's PNG written once, and its
+// replay gives the same bytes. A replay takes its windows from the recording.
+TEST(CliRun, SlidingWindowsRecordOnceAndReplayTheSameBytes) {
+    TempDir tmp;
+    const CliResult recorded =
+        run_cli({"run", "--virtual-clock", "--sensors", "2", "--motion", "slide", "--motion-period", "0.5", "--cycles",
+                 "8", "--background-frames", "2", "--window", "sliding", "--record", tmp.file("rec"), "--out",
+                 tmp.file("live")});
+    ASSERT_EQ(recorded.status, 0) << recorded.err;
+    EXPECT_TRUE(has(recorded.out, "\"window\": \"sliding\"")) << recorded.out;
+    const std::vector<std::string> lines = lines_of(read_bytes(tmp.file("live") + "/metrics.jsonl"));
+    ASSERT_EQ(lines.size(), 16u);
+    for (const std::string& line : lines) EXPECT_TRUE(has(line, "\"window_span_s\": 0.0333333")) << line;
+    // 8 windows of 2 settings: the first window's 2 frames, then 1 new frame each.
+    std::size_t pngs = 0;
+    for (const auto& e : fs::recursive_directory_iterator(tmp.file("rec") + "/SIM-0001/coin"))
+        pngs += e.path().extension() == ".png";
+    EXPECT_EQ(pngs, 9u);
+    const CliResult replayed = run_cli({"run", "--replay", tmp.file("rec"), "--out", tmp.file("again")});
+    ASSERT_EQ(replayed.status, 0) << replayed.err;
+    EXPECT_TRUE(has(replayed.out, "\"window\": \"sliding\"")) << replayed.out;
+    expect_same_outputs(tmp, "live", "again");
+    const CliResult refused = run_cli({"run", "--replay", tmp.file("rec"), "--window", "cycle"});
+    EXPECT_EQ(refused.status, 2);
+    EXPECT_TRUE(has(refused.err, "--window does not apply to --replay")) << refused.err;
+}
+
 // SIGINT: the run finishes the cycle in hand, flushes its files and exits 0.
 TEST(CliRun, InterruptFinishesTheCycleAndFlushes) {
     TempDir tmp;

@@ -3,6 +3,7 @@
 // configurations. test_cpu_switching.cpp covers the well-behaved sensor.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <memory>
@@ -130,6 +131,41 @@ RunResult run_cycles(const SensorSetup& setup, UnreliableSensor::Fault fault, co
     return {sw.requests_made(), sensor.faults()};
 }
 
+// The same through sliding windows: every frame of every window clean, lit by
+// its slot's setting, never a lost one, and the windows' span within the
+// bound; windows that a lost frame would stretch past it are held.
+RunResult run_windows(const SensorSetup& setup, UnreliableSensor::Fault fault, const std::set<int>& which, int windows,
+                      const IlluminationSequence& seq, std::uint64_t& held) {
+    Rigged r(setup);
+    UnreliableSensor sensor(r.truth, r.clock, r.sim->timing().frame_period_s, fault, which);
+    const SwitchTiming timing = measure_switch_timing(sensor, *r.clock);
+    sensor.arm(timing);
+    Switcher sw(sensor, r.clock, timing);
+    const double bound = window_bound(timing, seq.size());
+    std::uint64_t newest = 0;
+    for (int w = 0; w < windows; ++w) {
+        const std::vector<Frame> frames = sw.next_window(seq);
+        EXPECT_EQ(frames.size(), seq.size());
+        if (frames.size() != seq.size()) break;
+        double lo = frames[0].timestamp, hi = lo;
+        std::uint64_t latest = 0;
+        for (std::size_t k = 0; k < seq.size(); ++k) {
+            const SimFrameTruth t = r.truth->truth(frames[k].index);
+            EXPECT_FALSE(t.mixed) << "window " << w << " slot " << k << " frame " << frames[k].index;
+            EXPECT_EQ(t.lit_by.to_string(), seq[k].to_string()) << "window " << w << " slot " << k;
+            EXPECT_FALSE(sensor.lost().count(frames[k].index)) << "a lost frame was placed";
+            lo = std::min(lo, frames[k].timestamp);
+            hi = std::max(hi, frames[k].timestamp);
+            latest = std::max(latest, frames[k].index);
+        }
+        EXPECT_LE(hi - lo, bound + 1e-9) << "window " << w;
+        EXPECT_GT(latest, newest) << "window " << w << " brought no new frame";
+        newest = latest;
+    }
+    held = sw.windows_held();
+    return {sw.requests_made(), sensor.faults()};
+}
+
 // Which awaited frames are lost: irregular, a few per cycle of four settings.
 const std::set<int> kLost{2, 7, 13, 20, 26, 33};
 
@@ -161,6 +197,21 @@ TEST(SwitcherFaults, LateFramesAreRejectedAndRequestedAgain) {
         const RunResult faulty = run_cycles(s, UnreliableSensor::Fault::Late, kLost, 10, sequence());
         EXPECT_EQ(faulty.faults, int(kLost.size()));
         EXPECT_GT(faulty.requests, clean.requests) << "no slot was requested again";
+    }
+}
+
+// Sliding windows wait for a lost frame's retry instead of fusing without it,
+// and hold the windows it would stretch past the bound.
+TEST(SwitcherFaults, SlidingWindowsWaitForLostFramesAndStayWithinTheBound) {
+    for (const auto fault : {UnreliableSensor::Fault::Drop, UnreliableSensor::Fault::Late}) {
+        SCOPED_TRACE(fault == UnreliableSensor::Fault::Drop ? "drop" : "late");
+        const SensorSetup s{1.5 / 60, false, false};
+        std::uint64_t held_clean = 0, held = 0;
+        run_windows(s, fault, {}, 40, sequence(), held_clean);
+        const RunResult faulty = run_windows(s, fault, kLost, 40, sequence(), held);
+        EXPECT_EQ(faulty.faults, int(kLost.size()));
+        EXPECT_EQ(held_clean, 0u);
+        EXPECT_GT(held, 0u) << "no window waited for a lost frame's retry";
     }
 }
 

@@ -50,6 +50,53 @@ TEST_F(VulkanRig, SustainsTenCyclesPerSecondOfCleanFrames) {
     EXPECT_EQ(rig.submits(), std::uint64_t(kCycles));
 }
 
+// Sliding windows over a long run of a tapping and a sliding contact: every
+// frame of every fused window lit by its slot's setting alone, each window's
+// frames within the bound, and K fused images per cycle of clean frames (two
+// frames per setting at 60 fps: 30 a second of sensor time, with 2 or 3 settings).
+TEST_F(VulkanRig, SlidingWindowsFuseOnlyCleanFramesWithinTheBound) {
+    for (const char* sequence : {"15,15,15+0,15,0", "15,0,0+0,15,0+0,0,15"}) {
+        SCOPED_TRACE(sequence);
+        const IlluminationSequence seq = parse_sequence(sequence);
+        // Nothing pressed while calibrating and taking the background (a
+        // moving contact would read as light changing); pressed after.
+        std::vector<SimRigSensor> sims{sim_sensor(1, 1.5 / 60, "nothing", false, SimMotion::Tap, 0.5),
+                                       sim_sensor(2, 1.5 / 60, "nothing", false, SimMotion::Slide, 0.5)};
+        RigConfig cfg;
+        cfg.sequence = seq;
+        cfg.fusion.method = Method::Brovey;  // the windows are under test here, not the fusion
+        cfg.background_frames = 2;
+        cfg.skip.policy = SkipPolicy::Idle;
+        cfg.window = FusionWindow::Sliding;
+        cfg.after_background = [&sims](std::size_t i) { sims[i].sim->set_object(i == 0 ? "coin" : "lego"); };
+        Rig rig(&ctx(), cfg, {{sims[0].logged, sims[0].clock}, {sims[1].logged, sims[1].clock}});
+        rig.start();
+        constexpr int kWindows = 150;  // 5 s of sensor time: 10 taps and slides
+        std::vector<double> first_ts(sims.size()), last_ts(sims.size());
+        for (int w = 0; w < kWindows; ++w) {
+            const CycleResult r = rig.next();
+            for (std::size_t i = 0; i < sims.size(); ++i) {
+                const SensorCycle& s = r.sensors[i];
+                ASSERT_EQ(s.status, SensorStatus::Ok) << s.error;
+                ASSERT_EQ(s.frames.size(), seq.size());
+                for (std::size_t k = 0; k < seq.size(); ++k) {
+                    const SimFrameTruth t = sims[i].logged->truth(s.frames[k].index);
+                    ASSERT_FALSE(t.mixed) << s.serial << " window " << w << " slot " << k;
+                    ASSERT_EQ(t.lit_by, seq[k]) << s.serial << " window " << w << " slot " << k;
+                }
+                EXPECT_LE(s.window_span_s(), *rig.window_bound(i) + 1e-9) << s.serial << " window " << w;
+                (w == 0 ? first_ts : last_ts)[i] = s.newest_timestamp();
+            }
+        }
+        for (std::size_t i = 0; i < sims.size(); ++i) {
+            const double rate = double(kWindows - 1) / (last_ts[i] - first_ts[i]);
+            std::printf("[ rate     ] %s: %.6f fused windows per second of sensor time\n", rig.serial(i).c_str(), rate);
+            EXPECT_GE(rate, 30.0 * (1 - 1e-9));
+            EXPECT_EQ(rig.windows_held(i), 0u);
+        }
+    }
+}
+
 // Calibration finds the latency it was given (within its own bounds) on every sensor.
 TEST_F(VulkanRig, MeasuresEachSensorsLatency) {
     std::vector<SimRigSensor> sims{sim_sensor(1, 0.02), sim_sensor(2, 0.08)};

@@ -131,7 +131,7 @@ public:
     }
 
     // The next cycle: {"cycle", "capture_wait_s", "fuse_s", "sensors": [per sensor
-    // {"serial", "status", "error", "metrics", "fused", "frames", "idle"}]}.
+    // {"serial", "status", "error", "metrics", "fused", "frames", "idle", "window_span_s"}]}.
     py::dict next() {
         if (!rig_) throw Error(ErrorKind::InvalidArgument, "rig: closed");
         CycleResult c;
@@ -158,6 +158,7 @@ public:
             for (const Frame& f : s.frames) frames.append(pixels_of(f));
             e["frames"] = frames;
             e["idle"] = s.skip.idle;
+            e["window_span_s"] = ok ? py::object(py::float_(s.window_span_s())) : py::none();
             sensors.append(e);
         }
         d["sensors"] = sensors;

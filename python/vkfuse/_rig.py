@@ -105,7 +105,8 @@ class Rig:
         """The next cycle: {"cycle", "capture_wait_s", "fuse_s", "sensors": [per
         sensor {"serial", "status" ("ok", "timeout", "failed"), "error",
         "metrics", "fused" (float32, the frames' layout), "frames" (uint8, one
-        per setting), "idle"}]}."""
+        per setting), "idle", "window_span_s" (seconds from the oldest frame
+        to the newest; window="sliding" fuses at every new clean frame)}]}."""
         cycle = self._rig.next()
         for sensor in cycle["sensors"]:
             if sensor["fused"] is not None:

@@ -80,11 +80,12 @@ std::optional<SwitchTiming> slot_timing(Hub& hub, const SensorSlot& slot) {
 }
 
 // Hands one cycle to the rig, waiting while its mailbox is full.
-bool deliver(Hub& hub, SensorSlot& slot, std::vector<Frame> frames) {
+bool deliver(Hub& hub, SensorSlot& slot, std::vector<Frame> frames, std::uint64_t windows_held) {
     std::unique_lock lock(hub.mutex);
     hub.changed.wait(lock, [&] { return hub.stop || slot.ready.size() < kMailboxCycles; });
     if (hub.stop) return false;
     slot.ready.push_back(std::move(frames));
+    slot.windows_held = windows_held;
     slot.lost.reset();
     hub.changed.notify_all();
     return true;
@@ -109,8 +110,10 @@ void run_capture(const CaptureJob& job) {
         }))
         return;
     const RigConfig& cfg = *job.config;
+    // A replay's windows were recorded whole: they come as cycles.
+    const bool sliding = cfg.window == FusionWindow::Sliding && cfg.judging == FrameJudging::Timing;
     const bool may_watch = cfg.watch_when_idle && cfg.skip.policy != SkipPolicy::Off &&
-                           cfg.judging == FrameJudging::Timing && cfg.sequence.size() > 1;
+                           cfg.judging == FrameJudging::Timing && cfg.sequence.size() > 1 && !sliding;
     // Whether delivery n watches depends on the verdicts: after a watch
     // cycle, on its verdict (a change is followed at once by a whole
     // sequence); after a whole cycle, on the verdict two back, and only where
@@ -139,7 +142,9 @@ void run_capture(const CaptureJob& job) {
         }
         std::vector<Frame> frames;
         try {
-            frames = watch ? switcher.capture(cfg.sequence.front(), 1) : switcher.next_cycle(cfg.sequence);
+            frames = watch     ? switcher.capture(cfg.sequence.front(), 1)
+                     : sliding ? switcher.next_window(cfg.sequence)
+                               : switcher.next_cycle(cfg.sequence);
         } catch (const Error& e) {
             if (!recoverable(e)) throw;
             {
@@ -154,7 +159,7 @@ void run_capture(const CaptureJob& job) {
             if (const auto timing = slot_timing(hub, slot)) switcher = Switcher(*job.sensor.sensor, job.sensor.clock, *timing);
             continue;
         }
-        if (!deliver(hub, slot, std::move(frames))) return;
+        if (!deliver(hub, slot, std::move(frames), switcher.windows_held())) return;
         last_watched = watch;
         ++n;
     }

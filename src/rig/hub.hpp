@@ -31,6 +31,7 @@ struct SensorSlot {
     std::deque<std::vector<Frame>> ready;
     std::optional<SwitchTiming> timing;
     std::string switch_scheduling;  // Switcher::set_switch_priority's answer
+    std::uint64_t windows_held = 0;  // Switcher::windows_held, as of the last delivery
     bool background_done = false;
     bool background_applied = false;  // rig side: handed to the fusion engine
     std::vector<Image> background;    // per slot of the sequence

@@ -413,6 +413,19 @@ std::string Rig::switch_scheduling(std::size_t sensor) const {
     return impl_->hub->slots.at(sensor).switch_scheduling;
 }
 
+FusionWindow Rig::window() const { return impl_->cfg->window; }
+
+std::optional<double> Rig::window_bound(std::size_t sensor) const {
+    const std::optional<SwitchTiming> t = timing(sensor);
+    if (!t) return std::nullopt;
+    return vkfuse::window_bound(*t, impl_->cfg->sequence.size());
+}
+
+std::uint64_t Rig::windows_held(std::size_t sensor) const {
+    std::lock_guard lock(impl_->hub->mutex);
+    return impl_->hub->slots.at(sensor).windows_held;
+}
+
 bool Rig::all_failed() const {
     // Two cycles in flight: a cycle taken ahead with a sensor's frames in it
     // is still to be returned.
@@ -428,6 +441,18 @@ bool Rig::all_failed() const {
 std::uint64_t Rig::submits() const { return impl_->engine ? impl_->engine->submits() : 0; }
 
 int Rig::cycles_in_flight() const { return impl_->engine ? impl_->engine->cycles_in_flight() : 1; }
+
+double SensorCycle::newest_timestamp() const {
+    double t = frames.empty() ? 0.0 : frames.front().timestamp;
+    for (const Frame& f : frames) t = std::max(t, f.timestamp);
+    return t;
+}
+
+double SensorCycle::window_span_s() const {
+    double t = newest_timestamp();
+    for (const Frame& f : frames) t = std::min(t, f.timestamp);
+    return newest_timestamp() - t;
+}
 
 std::string_view to_string(SensorStatus status) {
     switch (status) {

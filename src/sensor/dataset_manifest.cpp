@@ -53,7 +53,8 @@ Value run_json(const DatasetRun& r) {
                          {"mode", std::string(to_string(f.mode))},
                          {"base_rule", std::string(to_string(f.base_rule))},
                          {"detail_rule", std::string(to_string(f.detail_rule))},
-                         {"background_frames", r.background_frames}};
+                         {"background_frames", r.background_frames},
+                         {"window", std::string(to_string(r.window))}};
 }
 
 // A value at a path in the manifest; every accessor names the path when the
@@ -187,6 +188,8 @@ DatasetRun run_from(const Node& n) {
     r.fusion.base_rule = n["base_rule"].parsed([](const std::string& s) { return parse_rule(s); });
     r.fusion.detail_rule = n["detail_rule"].parsed([](const std::string& s) { return parse_rule(s); });
     r.background_frames = int(n["background_frames"].integer(0, 1 << 20));
+    if (n.has("window"))  // recordings made before sliding windows: cycles
+        r.window = n["window"].parsed([](const std::string& s) { return parse_fusion_window(s, "window"); });
     return r;
 }
 

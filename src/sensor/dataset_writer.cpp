@@ -2,6 +2,7 @@
 // asked, or an MCAP recording's messages (dataset_mcap_writer.cpp).
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <system_error>
 
 #include "io/atomic_write.hpp"
@@ -32,12 +33,25 @@ Image to_image(const Frame& f) {
     return img;
 }
 
+// The frame a folder wrote last under one take and setting of a sensor: a
+// sliding window's frames are recorded once per window they are in, and the
+// same frame again is listed with the PNG it already has.
+struct WrittenFrame {
+    std::uint64_t index = 0;
+    double timestamp = 0;
+    std::vector<std::uint8_t> pixels;
+    std::string file;
+
+    bool same(const Frame& f) const { return f.index == index && f.timestamp == timestamp && f.pixels == pixels; }
+};
+
 }  // namespace
 
 struct DatasetWriter::Impl {
     std::mutex mutex;
     Dataset dataset;  // an MCAP recording's without its frames
     std::vector<std::size_t> file_counters;  // per sensor, a folder's
+    std::vector<std::map<std::string, WrittenFrame>> written;  // per sensor, a folder's: by take and setting
     std::unique_ptr<sensor::McapDatasetWriter> mcap;
 
     // An MCAP recording describes its sensors and run before its first frame.
@@ -75,6 +89,7 @@ int DatasetWriter::add_sensor(const SensorInfo& info) {
             throw Error(ErrorKind::InvalidArgument, impl_->dataset.directory + ": sensor " + info.serial + " added twice");
     impl_->dataset.sensors.push_back({info, {}, {}});
     impl_->file_counters.push_back(0);
+    impl_->written.emplace_back();
     return int(impl_->dataset.sensors.size()) - 1;
 }
 
@@ -90,11 +105,23 @@ void DatasetWriter::add_frame(int sensor, const std::string& object, bool backgr
     io::check_plain_component(take, "object");
     Impl& im = *impl_;
     std::string relative;
+    const std::string written_key = take + "/" + illumination_dir_name(lit_by);
+    DatasetFrame f;
+    f.index = frame.index;
+    f.timestamp = frame.timestamp;
+    f.illumination = lit_by;
+    f.cycle = cycle;
     {
         std::lock_guard lock(im.mutex);
         im.check_sensor(sensor);
         if (im.mcap) {
             im.mcap->add_frame(im.dataset, sensor, object, background, frame, lit_by, cycle);
+            return;
+        }
+        auto& written = im.written[std::size_t(sensor)];
+        if (auto it = written.find(written_key); it != written.end() && it->second.same(frame)) {
+            f.file = it->second.file;
+            sensor::take_of(im.dataset.sensors[std::size_t(sensor)], object, background).frames.push_back(std::move(f));
             return;
         }
         char number[32];
@@ -110,12 +137,8 @@ void DatasetWriter::add_frame(int sensor, const std::string& object, bool backgr
     if (ec) throw Error(ErrorKind::Io, path.parent_path().string() + ": cannot create: " + ec.message());
     io::write_image(path.string(), to_image(frame));
     std::lock_guard lock(im.mutex);
-    DatasetFrame f;
     f.file = relative;
-    f.index = frame.index;
-    f.timestamp = frame.timestamp;
-    f.illumination = lit_by;
-    f.cycle = cycle;
+    im.written[std::size_t(sensor)][written_key] = WrittenFrame{frame.index, frame.timestamp, frame.pixels, relative};
     sensor::take_of(im.dataset.sensors[std::size_t(sensor)], object, background).frames.push_back(std::move(f));
 }
 

@@ -1,5 +1,6 @@
 // Switcher: frames lit entirely by requested settings, judged by timing (a
 // live sensor) or by label (a recorded dataset). See include/vkfuse/sensor/switching.hpp.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -63,6 +64,11 @@ struct Switcher::Impl {
     std::map<std::uint64_t, std::vector<std::optional<Frame>>> cycles;
     std::uint64_t next_to_return = 0;
     Key next_to_request;
+    // Sliding windows: the newest frame of each slot, and which slot of cycle
+    // next_to_return enters next.
+    std::vector<std::optional<Frame>> newest;
+    std::size_t entering = 0;
+    std::uint64_t held = 0;
     // The setting requested last and when it lights whole frames from: a
     // capture under the setting already lit waits for no switch.
     std::optional<Illumination> lit;
@@ -99,12 +105,15 @@ struct Switcher::Impl {
         cycles.clear();
         planned = -kNever;
         next_to_request = {next_to_return, 0};
+        newest.assign(seq.size(), std::nullopt);
+        entering = 0;
     }
 
     std::vector<Frame> capture_by_label(const Illumination& setting, int n);
     std::vector<Frame> capture_by_timing(const Illumination& setting, int n);
     std::vector<Frame> cycle_by_label();
     std::vector<Frame> cycle_by_timing();
+    std::vector<Frame> window_by_timing();
 
     // Timing-mode steps.
     std::optional<Key> next_request_key() const;
@@ -112,6 +121,9 @@ struct Switcher::Impl {
     void grab_and_place();
     double predicted_frame(double not_before) const;
     bool cycle_complete(std::uint64_t cycle) const;
+    bool in_hand(std::uint64_t cycle, std::size_t slot) const;
+    void step();
+    void cycle_returned();
 };
 
 std::vector<Frame> Switcher::Impl::capture_by_label(const Illumination& setting, int n) {
@@ -228,30 +240,89 @@ bool Switcher::Impl::cycle_complete(std::uint64_t cycle) const {
     return true;
 }
 
-// Requests are made at `planned` whenever the next frame will not be in hand
-// by then (frames arrive `delivery` after their timestamp); otherwise the
-// frame is grabbed first. So the thread does not sit in grab() while a switch
-// is due.
-std::vector<Frame> Switcher::Impl::cycle_by_timing() {
-    if (!have_frame) grab_and_place();  // learn the frame grid before predicting frames
-    while (!cycle_complete(next_to_return)) {
-        const std::optional<Key> key = next_request_key();
-        const double in_hand_by = have_frame ? last_ts + timing.frame_period + timing.delivery : kNever;
-        if (key && (pending.empty() || planned <= in_hand_by)) {
-            make_request(*key);
-        } else if (pending.empty()) {
-            throw Error(ErrorKind::Device, serial + ": switch scheduler has nothing to wait for");  // unreachable
-        } else {
-            grab_and_place();
-        }
+bool Switcher::Impl::in_hand(std::uint64_t cycle, std::size_t slot) const {
+    auto it = cycles.find(cycle);
+    return it != cycles.end() && slot < it->second.size() && it->second[slot].has_value();
+}
+
+// One move of the scheduler: a request is made at `planned` whenever the next
+// frame will not be in hand by then (frames arrive `delivery` after their
+// timestamp); otherwise the frame is grabbed first. So the thread does not
+// sit in grab() while a switch is due.
+void Switcher::Impl::step() {
+    const std::optional<Key> key = next_request_key();
+    const double in_hand_by = have_frame ? last_ts + timing.frame_period + timing.delivery : kNever;
+    if (key && (pending.empty() || planned <= in_hand_by)) {
+        make_request(*key);
+    } else if (pending.empty()) {
+        throw Error(ErrorKind::Device, serial + ": switch scheduler has nothing to wait for");  // unreachable
+    } else {
+        grab_and_place();
     }
-    std::vector<Frame> out;
-    for (auto& slot : cycles[next_to_return]) out.push_back(std::move(*slot));
+}
+
+// Cycle next_to_return has been handed out: requests may run further ahead.
+void Switcher::Impl::cycle_returned() {
     cycles.erase(next_to_return);
     for (auto it = attempts.begin(); it != attempts.end();)
         it = it->first.cycle == next_to_return ? attempts.erase(it) : std::next(it);
     ++next_to_return;
+}
+
+std::vector<Frame> Switcher::Impl::cycle_by_timing() {
+    if (!have_frame) grab_and_place();  // learn the frame grid before predicting frames
+    while (!cycle_complete(next_to_return)) step();
+    std::vector<Frame> out;
+    for (auto& slot : cycles[next_to_return]) out.push_back(std::move(*slot));
+    cycle_returned();
     return out;
+}
+
+// The same schedule as cycle_by_timing, its frames taken into the window one
+// slot at a time in sequence order.
+std::vector<Frame> Switcher::Impl::window_by_timing() {
+    if (!have_frame) grab_and_place();
+    const double bound = window_bound(timing, sequence.size());
+    for (;;) {
+        while (!in_hand(next_to_return, entering)) step();
+        newest[entering] = std::move(*cycles[next_to_return][entering]);
+        if (++entering == sequence.size()) {
+            cycle_returned();
+            entering = 0;
+        }
+        if (!std::all_of(newest.begin(), newest.end(), [](const auto& f) { return f.has_value(); })) continue;
+        double oldest = kNever, latest = -kNever;
+        for (const auto& f : newest) {
+            oldest = std::min(oldest, f->timestamp);
+            latest = std::max(latest, f->timestamp);
+        }
+        if (latest - oldest > bound + kRounding) {
+            ++held;
+            continue;
+        }
+        std::vector<Frame> out;
+        for (const auto& f : newest) out.push_back(*f);
+        return out;
+    }
+}
+
+std::string_view to_string(FusionWindow window) {
+    return window == FusionWindow::Sliding ? "sliding" : "cycle";
+}
+
+FusionWindow parse_fusion_window(std::string_view name, std::string_view what) {
+    for (FusionWindow w : {FusionWindow::Cycle, FusionWindow::Sliding})
+        if (name == to_string(w)) return w;
+    throw Error(ErrorKind::InvalidArgument, std::string(what) + " " + std::string(name) + ": expected cycle or sliding");
+}
+
+double window_bound(const SwitchTiming& timing, std::size_t settings) {
+    // A switch is requested `clearance` (and `jitter`, for a late frame)
+    // after the last frame of the setting before; its first whole frame is
+    // the first on the frame grid `latency_max` after the request.
+    const double gap = timing.jitter + timing.clearance + timing.latency_max;
+    const double slot = timing.frame_period * std::max(1.0, std::ceil(gap / timing.frame_period - kRounding));
+    return double(settings) * slot + timing.latency_max;
 }
 
 std::string Switcher::set_switch_priority(int priority) {
@@ -292,6 +363,17 @@ std::vector<Frame> Switcher::next_cycle(const IlluminationSequence& sequence) {
     if (sequence != impl_->sequence) impl_->reset(sequence);
     return impl_->by_label() ? impl_->cycle_by_label() : impl_->cycle_by_timing();
 }
+
+std::vector<Frame> Switcher::next_window(const IlluminationSequence& sequence) {
+    if (sequence.empty()) throw Error(ErrorKind::InvalidArgument, impl_->serial + ": empty illumination sequence");
+    if (impl_->by_label())
+        throw Error(ErrorKind::InvalidArgument,
+                    impl_->serial + ": sliding windows are formed by timing; recorded frames are replayed as recorded");
+    if (sequence != impl_->sequence) impl_->reset(sequence);
+    return impl_->window_by_timing();
+}
+
+std::uint64_t Switcher::windows_held() const { return impl_->held; }
 
 std::uint64_t Switcher::frames_grabbed() const { return impl_->grabbed; }
 std::uint64_t Switcher::requests_made() const { return impl_->requests; }

@@ -223,6 +223,21 @@ def test_a_rig_of_simulated_digits_yields_cycles_as_arrays_and_dicts(backend):
         vkfuse.Rig(sequence=[(16, 0, 0)])
 
 
+def test_a_sliding_rig_fuses_each_settings_newest_frame_at_every_clean_frame():
+    rig = vkfuse.Rig(sensors=1, virtual_clock=True, window="sliding", method="brovey", backend="cpu")
+    windows = [c["sensors"][0] for c in rig.cycles(4)]
+    rig.close()
+    for w in windows:
+        assert w["status"] == "ok" and w["window_span_s"] == pytest.approx(1 / 30, abs=1e-6)
+    # Each window keeps the other setting's frame and takes one new frame, the
+    # settings taking turns.
+    for before, after in zip(windows, windows[1:]):
+        same = [np.array_equal(a, b) for a, b in zip(before["frames"], after["frames"])]
+        assert sorted(same) == [False, True]
+    with pytest.raises(ValueError, match="window both: expected cycle or sliding"):
+        vkfuse.Rig(window="both")
+
+
 @pytest.fixture(scope="module")
 def recorded(tmp_path_factory):
     """A dataset `vkfuse sim` records: one object under the 8 settings of levels 0 and 15."""

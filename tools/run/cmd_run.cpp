@@ -47,6 +47,7 @@ constexpr OptionSpec kOptions[] = {
     {"--skip", "", "MODE", "off; idle: a sensor whose frames stay within its background noise is not fused; static: also one whose frames match its last fused cycle; tiles: also a changed sensor fuses only its changed tiles and their halo (default tiles)"},
     {"--skip-threshold", "", "K", "a tile changed when a sample lies over K x the tile's noise from the background (default 8)"},
     {"--cycles-in-flight", "", "N", "1: each cycle is fused and written before the next is fused; 2: the GPU fuses cycle c + 1 while cycle c is written (needs --skip off; the CPU path keeps 1) (default 1)"},
+    {"--window", "", "cycle|sliding", "cycle: one clean frame per setting, fused once per cycle (the paper's way); sliding: the newest clean frame of each setting, fused at every new clean frame, K times the fused rate (live sensors; a replay plays the windows it recorded) (default cycle)"},
     {"--switch-priority", "", "N", "live sensors: each LED switch request runs under real-time scheduling (SCHED_FIFO) at this priority, 1..99, for the moment it takes, since a request has about a millisecond of slack and a busy host wakes a normal thread later, losing a frame; 0: the normal scheduler. Refused (no CAP_SYS_NICE or RLIMIT_RTPRIO), the run goes on as with 0 and summary.json's switch_scheduling says so (default 10)"},
     {"--metrics", "", "LIST", "the metrics computed and written, comma-separated: sharpness, contrast, background_diff (default all three; background_diff needs a background)"},
     {"--pressing", "", "N", "simulated DIGITs: only the first N press --object, the rest touch nothing (default all)"},
@@ -159,7 +160,7 @@ void open_outputs(Session& s) {
     if (!s.record) return;
     s.recorder = std::make_unique<DatasetWriter>(s.record->path(), "vkfuse run");
     for (const RigSensor& r : s.sensors.rig) s.recorder->add_sensor(r.sensor->info());
-    s.recorder->set_run({s.options.sequence, s.options.fusion, s.options.background_frames});
+    s.recorder->set_run({s.options.sequence, s.options.fusion, s.options.background_frames, s.options.window});
 }
 
 // --serve: listening before the rig starts, so a page opened now sees its first cycle.

@@ -58,7 +58,7 @@ void check_replay_conflicts(const Args& args) {
     for (const char* option : kSimulatorOptions)
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
-    for (const char* option : {"--background-frames", "--sensor", "--encoding", "--config"})
+    for (const char* option : {"--background-frames", "--sensor", "--encoding", "--config", "--window"})
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
 }
@@ -107,7 +107,7 @@ void source_options(const Args& args, RunOptions& o) {
     require_ros2("--source ros2");
     for (const char* option : kSimulatorOptions)
         if (args.has(option)) args.usage_error(std::string(option) + " does not apply to --source ros2 (its sensors are another host's)");
-    for (const char* option : {"--replay", "--sequence", "--background-frames", "--encoding", "--config"})
+    for (const char* option : {"--replay", "--sequence", "--background-frames", "--encoding", "--config", "--window"})
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --source ros2 (the capture host decides)");
     for (const char* option : {"--capture-only", "--publish-frames"})
@@ -236,6 +236,7 @@ RunOptions parse_run_options(const Args& args) {
     o.backend = parse_backend_option(args.value("--backend").value_or("auto"));
     if (auto v = args.value("--cycles")) o.cycles = parse_positive_int("--cycles", *v);
     if (auto v = args.value("--duration")) o.duration_s = parse_seconds("--duration", *v);
+    if (auto v = args.value("--window")) o.window = parse_fusion_window(*v);
     o.virtual_clock = args.has("--virtual-clock");
     o.camera_auto = args.has("--camera-auto");
     o.record = args.value("--record");
@@ -270,6 +271,7 @@ void adopt_recording(RunOptions& o, const Args& args, const Dataset& d) {
     if (d.sensors.empty()) fail(d.directory + ": the dataset has no sensors");
     if (d.run && !args.has("--sequence")) o.sequence = d.run->sequence;
     if (d.run) o.fusion = fusion_options(args, with_method(args, d.run->fusion));
+    if (d.run) o.window = d.run->window;
     const std::vector<std::string> objects = d.objects();
     if (!args.has("--object")) {
         if (objects.empty()) fail(d.directory + ": the dataset holds no object frames");

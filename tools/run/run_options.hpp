@@ -55,6 +55,7 @@ struct RunOptions {
     // --metrics: all three unless told; background_diff only with a background.
     MetricSet metrics = MetricSet::all();
     int cycles_in_flight = 1;     // --cycles-in-flight (RigConfig::cycles_in_flight)
+    FusionWindow window = FusionWindow::Cycle;  // --window (RigConfig::window), live sensors
     int switch_priority = 10;     // --switch-priority (RigConfig::switch_priority), live sensors on a real clock
     std::optional<int> pressing;  // simulated DIGITs: how many press the object (the first N), default all
     double timeout_s = kLiveTimeoutSeconds;

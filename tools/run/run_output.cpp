@@ -91,8 +91,8 @@ std::string metrics_line(const CycleResult& cycle, const SensorCycle& s, const s
     if (s.status != SensorStatus::Ok) return line + ", \"error\": " + json_string(s.error) + "}";
     std::string frames;
     for (const Frame& f : s.frames) frames += (frames.empty() ? "" : ", ") + std::to_string(f.index);
-    line += ", \"object\": " + json_string(object) + ", \"timestamp\": " + json_number(s.frames.back().timestamp) +
-            ", \"frames\": [" + frames + "]";
+    line += ", \"object\": " + json_string(object) + ", \"timestamp\": " + json_number(s.newest_timestamp()) +
+            ", \"frames\": [" + frames + "], \"window_span_s\": " + json_number(s.window_span_s());
     // Only the metrics the run asked for (--metrics): the others read NaN.
     const auto metric = [&](Metric m, double v) {
         if (!std::isnan(v)) line += ", " + json_string(std::string(to_string(m))) + ": " + json_number(v);

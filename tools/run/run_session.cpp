@@ -93,6 +93,7 @@ RigConfig rig_config(const RigSession& s) {
     cfg.watch_when_idle = !o.record;  // a dataset holds every setting of every cycle
     cfg.cycles_in_flight = o.cycles_in_flight;
     cfg.switch_priority = o.switch_priority;
+    cfg.window = o.window;
     if (!s.sensors.sims.empty() && o.background_frames > 0)
         cfg.after_background = [sims = s.sensors.sims, object = o.object,
                                 pressing = std::size_t(o.pressing.value_or(o.sensors))](std::size_t i) {

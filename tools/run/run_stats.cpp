@@ -14,11 +14,12 @@ std::string fixed(double v, int decimals) {
     return text;
 }
 
-std::string timing_json(const std::optional<SwitchTiming>& t) {
+std::string timing_json(const std::optional<SwitchTiming>& t, std::optional<double> window_bound) {
     if (!t) return "null";
     return "{\"frame_period_s\": " + json_number(t->frame_period) +
            ", \"latency_max_s\": " + json_number(t->latency_max) + ", \"clearance_s\": " + json_number(t->clearance) +
-           ", \"delivery_s\": " + json_number(t->delivery) + ", \"jitter_s\": " + json_number(t->jitter) + "}";
+           ", \"delivery_s\": " + json_number(t->delivery) + ", \"jitter_s\": " + json_number(t->jitter) +
+           ", \"window_bound_s\": " + json_number(window_bound.value_or(0)) + "}";
 }
 
 }  // namespace
@@ -40,7 +41,7 @@ void RunStats::add(const CycleResult& cycle, double write_s) {
         if (s.skip.idle) ++idle_;
         fused_fraction_sum_ += s.skip.fused_fraction;
         PerSensor& p = sensors_[i];
-        const double ts = s.frames.back().timestamp;
+        const double ts = s.newest_timestamp();
         if (p.fused++ == 0) p.first_ts = ts;
         p.last_ts = ts;
     }
@@ -91,10 +92,11 @@ std::string RunStats::summary_json(const Rig& rig, const std::string& source) co
         fps_min = *std::min_element(fps.begin(), fps.end());
         for (double f : fps) fps_mean += f / double(fps.size());
     }
-    std::string timings, scheduling, errors;
+    std::string timings, scheduling, held, errors;
     for (std::size_t i = 0; i < rig.sensors(); ++i) {
         const std::string key = (i ? ", " : "") + json_string(rig.serial(i)) + ": ";
-        timings += key + timing_json(rig.timing(i));
+        timings += key + timing_json(rig.timing(i), rig.window_bound(i));
+        held += key + std::to_string(rig.windows_held(i));
         scheduling += key + json_string(rig.switch_scheduling(i));
     }
     for (const std::string& e : errors_) errors += (errors.empty() ? "" : ", ") + json_string(e);
@@ -104,7 +106,8 @@ std::string RunStats::summary_json(const Rig& rig, const std::string& source) co
            ", \"fused_fps_per_sensor\": " + json_number(double(fused_) / wall / double(sensors_.size())) +
            ", \"sensor_clock_fps_min\": " + json_number(fps_min) +
            ", \"sensor_clock_fps_mean\": " + json_number(fps_mean) +
-           ", \"cycles_in_flight\": " + std::to_string(rig.cycles_in_flight()) + ", \"ms_per_cycle\": {\"capture\": " + json_number(capture_s_ / n * 1e3) +
+           ", \"cycles_in_flight\": " + std::to_string(rig.cycles_in_flight()) +
+           ", \"window\": " + json_string(std::string(to_string(rig.window()))) + ", \"windows_held\": {" + held + "}" + ", \"ms_per_cycle\": {\"capture\": " + json_number(capture_s_ / n * 1e3) +
            ", \"fuse\": " + json_number(fuse_s_ / n * 1e3) + ", \"write\": " + json_number(write_s_ / n * 1e3) +
            "}, \"skip\": {\"mode\": " + json_string(std::string(to_string(skip_.policy))) +
            ", \"threshold\": " + json_number(skip_.threshold) +

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vkfuse/core/fusion.hpp"
@@ -39,6 +40,9 @@ struct RigConfig {
     FusionSpec fusion;
     IlluminationSequence sequence;  // K settings, one frame each per cycle
     FrameJudging judging = FrameJudging::Timing;
+    // Sliding, frames judged by label: a replay of a sliding run, whose
+    // windows were recorded whole and are played as recorded.
+    FusionWindow window = FusionWindow::Cycle;
     SwitchCalibration calibration;
     // Frames per setting averaged into each sensor's background model before
     // the first cycle (with nothing pressed); 0: no background, no
@@ -63,7 +67,8 @@ struct RigConfig {
     // cycle: no LED switching, no frames lost to it) until that frame
     // changes; the cycle after it captures and fuses the whole sequence again.
     // Off for a run whose frames are recorded, so that every cycle of the
-    // dataset holds every setting.
+    // dataset holds every setting, and with sliding windows (a window needs
+    // every setting's newest frame).
     bool watch_when_idle = true;
     // 2: the rig submits cycle c + 1 to the device before it returns cycle c
     // (PlanConfig::cycles_in_flight), so the device fuses c + 1 while the
@@ -112,6 +117,10 @@ struct SensorCycle {
     // where its frame changed (skip.changed_fraction > 0) the next cycle
     // captures the whole sequence and is fused.
     bool watch = false;
+    // When Ok: the newest frame's timestamp (when the window was complete),
+    // and how long before it the oldest was taken (0 for a watch cycle).
+    double newest_timestamp() const;
+    double window_span_s() const;
 };
 
 struct CycleResult {
@@ -156,6 +165,14 @@ public:
     // "normal", or "normal (fifo N refused: why)"; empty until calibrated,
     // and when judging by label.
     std::string switch_scheduling(std::size_t sensor) const;
+    FusionWindow window() const;  // RigConfig::window
+    // The most one window's frames may span (vkfuse::window_bound of the
+    // sensor's timing and the sequence); nullopt when judging by label or
+    // not calibrated yet.
+    std::optional<double> window_bound(std::size_t sensor) const;
+    // Sliding windows not fused because their frames spanned more than
+    // window_bound (a frame came late), so far.
+    std::uint64_t windows_held(std::size_t sensor) const;
     // True when every sensor has failed and no cycle is left to take (or, with
     // two cycles in flight, to return): nothing more will come.
     bool all_failed() const;

@@ -16,6 +16,7 @@
 #include "vkfuse/core/fusion.hpp"
 #include "vkfuse/sensor/clock.hpp"
 #include "vkfuse/sensor/illumination.hpp"
+#include "vkfuse/sensor/switching.hpp"
 #include "vkfuse/sensor/sensor.hpp"
 
 namespace vkfuse {
@@ -58,6 +59,9 @@ struct DatasetRun {
     IlluminationSequence sequence;
     FusionSpec fusion;
     int background_frames = 0;  // per setting, in each sensor's background take
+    // Sliding: each recorded cycle is one window, its K frames recorded whole
+    // (a frame is in up to K windows; a folder writes its PNG once).
+    FusionWindow window = FusionWindow::Cycle;
 };
 
 // An MCAP recording kept open while its dataset is in use.

@@ -5,6 +5,8 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "vkfuse/sensor/clock.hpp"
@@ -67,6 +69,25 @@ struct SwitchCalibration {
 // respond to the LEDs.
 SwitchTiming measure_switch_timing(Sensor& sensor, Clock& clock, const SwitchCalibration& options = {});
 
+// Which frames a sensor's fused image is made of.
+enum class FusionWindow {
+    // One clean frame per setting, each taken for that cycle: K clean frames
+    // per fused image (the paper's way).
+    Cycle,
+    // The newest clean frame of each setting, fused at every new clean frame
+    // (Switcher::next_window): K times the fused images from the same frames,
+    // each up to K - 1 clean-frame periods apart.
+    Sliding,
+};
+std::string_view to_string(FusionWindow window);  // "cycle", "sliding"
+// Throws Error(InvalidArgument) "<what> <name>: expected cycle or sliding".
+FusionWindow parse_fusion_window(std::string_view name, std::string_view what = "--window");
+
+// The most the frames of one sliding window (Switcher::next_window) may span,
+// from the oldest frame's timestamp to the newest's: one sequence period (K
+// switches, each as soon as the last frame allows) plus the LED latency.
+double window_bound(const SwitchTiming& timing, std::size_t settings);
+
 // Fetches frames lit entirely by requested settings from one sensor (used by
 // one thread). Two ways to judge a frame:
 //  - by timing (a live sensor): a frame belongs to the setting requested at t
@@ -93,6 +114,19 @@ public:
     // again. Throws Error naming the serial after repeated misses. Call with
     // the same sequence every time.
     std::vector<Frame> next_cycle(const IlluminationSequence& sequence);
+
+    // A sliding window over the same stream of clean frames (by timing only):
+    // the newest frame of each slot of sequence, returned once for every new
+    // clean frame from the first moment every slot has one, so K settings
+    // give K windows per cycle. Frames enter in the order of their slots
+    // (cycle c's slot k after cycle c's slot k - 1), so a frame that missed
+    // its window makes the windows wait for it. A window whose frames span
+    // more than window_bound(timing, K) is not returned but counted
+    // (windows_held()): that happens when a frame came late. The same
+    // sequence every time, as for next_cycle; a capture() in between starts
+    // the window over.
+    std::vector<Frame> next_window(const IlluminationSequence& sequence);
+    std::uint64_t windows_held() const;
 
     // By timing: each LED switch request, and the wait for its moment, runs
     // under real-time scheduling (SCHED_FIFO at priority, 1..99) on the
