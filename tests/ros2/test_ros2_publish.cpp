@@ -10,7 +10,9 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -75,13 +77,13 @@ std::string arrived(const ros2::Ros2Reader& reader) {
 
 constexpr std::size_t kImagesKept = 3;  // the publisher's history of each fused topic
 
-// Every metric, and the images a keep-last history promises: the last
-// kImagesKept of each sensor.
-bool all_arrived(const ros2::Ros2Reader& reader) {
+// Every metric of `cycles` cycles, and the images a keep-last history
+// promises: the last kImagesKept of each sensor.
+bool all_arrived(const ros2::Ros2Reader& reader, std::size_t cycles = kCycles) {
     for (std::size_t i = 0; i < kSerials.size(); ++i) {
         const std::vector<ImageMessage> images = reader.samples<ImageMessage>(fused_topic(i));
         const std::vector<FusionMetricsMessage> metrics = reader.samples<FusionMetricsMessage>(metrics_topic(i));
-        if (metrics.size() < std::size_t(kCycles) || images.size() < kImagesKept) return false;
+        if (metrics.size() < cycles || images.size() < kImagesKept) return false;
         // The last cycle's image is in (an image and its metrics share their stamp).
         if (images.back().header.sec != metrics.back().header.sec ||
             images.back().header.nanosec != metrics.back().header.nanosec)
@@ -192,16 +194,26 @@ TEST(Ros2Publish, TheRigIsLatchedAndFloatImagesAreTheFusedSamples) {
     TempDir dir;
     const std::string out = dir.file("out");
     std::optional<ros2::Ros2Reader> late;
-    const pid_t pid = start_cli(publish_args(domain, out, "32FC3"), dir.file("stdout"), dir.file("stderr"));
+    // The run goes on until the late reader has joined (on a virtual clock
+    // it could end before that reader is even discovered), then ends on SIGINT.
+    std::vector<std::string> args = publish_args(domain, out, "32FC3");
+    const auto cycles = std::find(args.begin(), args.end(), "--cycles");
+    args.erase(cycles, cycles + 2);
+    const pid_t pid = start_cli(args, dir.file("stdout"), dir.file("stderr"));
     // Once the run publishes, a second reader subscribes to the rig alone.
     ASSERT_TRUE(reader.wait([&] { return !reader.samples<FusionMetricsMessage>(metrics_topic(0)).empty(); },
                             std::chrono::seconds(120)));
     late.emplace(domain);
     late->subscribe<RigDescriptionMessage>("/vkfuse/rig", true);
+    const bool joined = late->wait([&] { return !late->samples<RigDescriptionMessage>("/vkfuse/rig").empty(); },
+                                   std::chrono::seconds(30));
+    kill(pid, SIGINT);
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
     ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_bytes(dir.file("stderr"));
-    ASSERT_TRUE(reader.wait([&] { return all_arrived(reader); }, std::chrono::seconds(30))) << arrived(reader);
+    ASSERT_TRUE(joined) << "the late reader got no rig description";
+    const std::size_t ran = lines_of(read_bytes(out + "/metrics.jsonl")).size() / kSerials.size();
+    ASSERT_TRUE(reader.wait([&] { return all_arrived(reader, ran); }, std::chrono::seconds(30))) << arrived(reader);
 
     for (std::size_t i = 0; i < kSerials.size(); ++i)
         for (const ImageMessage& m : reader.samples<ImageMessage>(fused_topic(i))) {
@@ -220,9 +232,6 @@ TEST(Ros2Publish, TheRigIsLatchedAndFloatImagesAreTheFusedSamples) {
                 << kSerials[i] << " cycle " << c;
         }
 
-    ASSERT_TRUE(late->wait([&] { return !late->samples<RigDescriptionMessage>("/vkfuse/rig").empty(); },
-                           std::chrono::seconds(10)))
-        << "the late reader got no rig description";
     const RigDescriptionMessage rig = late->samples<RigDescriptionMessage>("/vkfuse/rig").front();
     ASSERT_EQ(rig.sensors.size(), kSerials.size());
     for (std::size_t i = 0; i < kSerials.size(); ++i) {
