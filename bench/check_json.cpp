@@ -1,7 +1,9 @@
 // vkfuse-bench-check-json FILE [--min-cells N] [--require-measured BACKEND]:
 // the ctest check that --json output parses and every cell has every field,
 // so the report cannot silently lose a column. Exit 0 ok, 1 with one line why.
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -107,18 +109,56 @@ void check_pipeline(const Value& doc) {
         throw std::runtime_error("not one round trip row and one pipelined row per method");
 }
 
+// --windows: every row has every field; a still contact costs a sliding
+// window nothing (its frames equal the same instant's); for each scene and K,
+// the sliding window fuses K times the cycle's images a second, and on a
+// moving contact reaches a change sooner on average than the cycle.
+void check_windows(const Value& doc) {
+    if (!doc.is_array() || doc.array().empty()) throw std::runtime_error("top level is not a non-empty array");
+    std::map<std::string, const Value*> cycle_rows;
+    int pairs = 0;
+    for (std::size_t i = 0; i < doc.array().size(); ++i) {
+        const Value& row = doc.array()[i];
+        const std::string at = "row " + std::to_string(i);
+        for (const char* key : {"scene", "window", "sequence", "frames", "images", "fused_fps", "latency_mean_ms",
+                                "latency_max_ms", "span_max_ms", "max_abs_err", "mean_abs_err", "sharpness_rel_err",
+                                "contrast_rel_err", "background_diff_rel_err"})
+            if (!row.find(key)) throw std::runtime_error(at + " lacks \"" + key + "\"");
+        const std::string scene = row.find("scene")->string();
+        const std::string key = scene + " K=" + std::to_string(int(row.find("frames")->number()));
+        if (scene == "still" && (row.find("max_abs_err")->number() != 0 || row.find("sharpness_rel_err")->number() != 0))
+            throw std::runtime_error(at + ": a still contact, yet an error against the same instant");
+        if (row.find("window")->string() == "cycle") {
+            cycle_rows[key] = &row;
+            continue;
+        }
+        const auto c = cycle_rows.find(key);
+        if (c == cycle_rows.end()) throw std::runtime_error(at + ": no cycle row before it for " + key);
+        const double ratio = row.find("fused_fps")->number() / c->second->find("fused_fps")->number();
+        if (std::abs(ratio - row.find("frames")->number()) > 0.05)
+            throw std::runtime_error(at + ": " + key + " sliding fuses " + std::to_string(ratio) + "x the cycle's rate");
+        const Value* slid = row.find("latency_mean_ms");
+        const Value* cycled = c->second->find("latency_mean_ms");
+        if (scene != "still" && !(slid->is_number() && cycled->is_number() && slid->number() < cycled->number()))
+            throw std::runtime_error(at + ": " + key + " sliding is not sooner on a contact change than the cycle");
+        ++pairs;
+    }
+    if (pairs == 0) throw std::runtime_error("no sliding row beside a cycle row");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: vkfuse-bench-check-json FILE [--min-cells N] [--require-measured BACKEND] [--scenes | --pipeline]\n");
+        std::fprintf(stderr, "usage: vkfuse-bench-check-json FILE [--min-cells N] [--require-measured BACKEND] [--scenes | --pipeline | --windows]\n");
         return 2;
     }
     int min_cells = 1;
     std::string backend;
-    bool scenes = false, pipeline = false;
+    bool scenes = false, pipeline = false, windows = false;
     for (int i = 2; i < argc; ++i) {
         if (std::string(argv[i]) == "--scenes") scenes = true;
+        if (std::string(argv[i]) == "--windows") windows = true;
         if (std::string(argv[i]) == "--pipeline") pipeline = true;
     }
     for (int i = 2; i + 1 < argc; i += 2) {
@@ -130,6 +170,8 @@ int main(int argc, char** argv) {
         const Value doc = vkfuse::json::parse(read_file(argv[1]), argv[1]);
         if (scenes)
             check_scenes(doc);
+        else if (windows)
+            check_windows(doc);
         else if (pipeline)
             check_pipeline(doc);
         else

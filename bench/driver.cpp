@@ -14,6 +14,7 @@
 #include "report.hpp"
 #include "pipeline.hpp"
 #include "scenes.hpp"
+#include "windows.hpp"
 #include "timing.hpp"
 #include "vk/probes/copy_bandwidth.hpp"
 #include "vk/probes/kernel_access.hpp"
@@ -240,6 +241,7 @@ int run_bench(const Options& o) {
     check_output_dir("--json", o.json_path);
     check_output_dir("--plot", o.plot_path);
     if (o.scenes) return run_scenes(o);
+    if (o.windows) return run_windows(o);
     if (o.pipeline) return run_pipeline(o);
     const double budget = memory_budget(o.mem_limit_gib);
     const std::vector<Cell> cells = build_matrix(o, budget);

@@ -90,6 +90,19 @@ Measurement:
                     region), tiles_work_fraction (the tile-sparse work model).
                     --json writes the rows, --plot time against error per scene;
                     --runs N: N cycles, rounded up to whole passes over the 24
+  --windows         sliding windows against cycles instead of the matrix: one
+                    simulated DIGIT (QVGA, 60 fps, LED latency 1.5 frames) pressed
+                    by a coin that is still, taps or slides (periods 0.5, 1, 2 s),
+                    4 s of sensor time per row, K=2 (15,15,15+0,15,0) and K=3
+                    (15,0,0+0,15,0+0,0,15; --frames picks), wavelet bior4.4 L3;
+                    a row per scene, window and K: fused_fps (per second of sensor
+                    time), latency_mean_ms / latency_max_ms (from the first frame
+                    showing a contact change to the end of the newest frame of the
+                    first image fused with it), span_max_ms (the widest window),
+                    max_abs_err / mean_abs_err and the metrics' relative errors
+                    against fusing every setting at one instant (each slot's frame
+                    rendered again with its own noise and the newest frame's
+                    contact). --json writes the rows, --plot fused rate against error
   --pipeline        a sensor loop instead of the matrix: S sensors (default 16; the
                     first --sensors), QVGA (the first --size), K=3 (the first
                     --frames), 8-bit frames, every fused image and metric read

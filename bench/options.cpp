@@ -102,6 +102,7 @@ const std::map<std::string, std::function<void(Options&)>, std::less<>>& flags()
         {"--list", [](Options& o) { o.list = true; }},
         {"--probe", [](Options& o) { o.probe = true; }},
         {"--scenes", [](Options& o) { o.scenes = true; }},
+        {"--windows", [](Options& o) { o.windows = true; }},
         {"--pipeline", [](Options& o) { o.pipeline = true; }},
         {"--help", [](Options& o) { o.help = true; }},
         {"-h", [](Options& o) { o.help = true; }},

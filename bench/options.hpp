@@ -39,6 +39,7 @@ struct Options {
     double mem_limit_gib = 0;    // 0: 80% of the memory available at start
     bool list = false;           // print the cells and exit
     bool probe = false;          // measure the device, print it, run no cell
+    bool windows = false;        // sliding windows against cycles on simulated scenes (windows.hpp)
     bool scenes = false;         // skipping on simulated scenes instead of the matrix (scenes.hpp)
     bool pipeline = false;       // round trip against two cycles in flight instead of the matrix (pipeline.hpp)
     bool help = false;

@@ -22,6 +22,7 @@
 #include "vkfuse/rig/background.hpp"
 #include "vkfuse/sensor/sim_digit.hpp"
 #include "vkfuse/vk/plan.hpp"
+#include "scatter_svg.hpp"
 
 namespace vkfuse::bench {
 namespace {
@@ -197,41 +198,15 @@ json::Value row_json(const Row& r) {
 }
 
 // Time (share of full fusion) against the error outside the fused cycles,
-// log x, one colour per scene; an error of 0 sits on the left edge.
+// one colour per scene.
 void write_plot(const std::string& path, const std::vector<Row>& rows, const std::string& device) {
-    constexpr double kW = 640, kH = 400, kL = 70, kR = 150, kT = 40, kB = 50, kMinErr = 1e-6, kMaxErr = 1.0;
-    const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02"};
-    double top = 1.0;
-    for (const Row& r : rows) top = std::max(top, r.median_ms / r.full_median_ms);
-    auto x = [&](double e) {
-        return kL + (kW - kL - kR) * (std::log10(std::max(e, kMinErr)) - std::log10(kMinErr)) /
-                        (std::log10(kMaxErr) - std::log10(kMinErr));
-    };
-    auto y = [&](double f) { return kH - kB - (kH - kT - kB) * f / (top * 1.05); };
-    std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"400\" font-family=\"sans-serif\" font-size=\"12\">\n";
-    svg += "<text x=\"70\" y=\"20\">vkfuse-bench --scenes on " + device + ": time against error</text>\n";
-    svg += "<text x=\"200\" y=\"390\">max abs error outside fused cycles (log, 1e-6 .. 1)</text>\n";
-    svg += "<text x=\"5\" y=\"200\">time / full</text>\n";
-    svg += "<rect x=\"70\" y=\"40\" width=\"420\" height=\"310\" fill=\"none\" stroke=\"black\"/>\n";
-    std::vector<std::string> names;
-    for (const Row& r : rows) {
-        auto it = std::find(names.begin(), names.end(), r.scene);
-        if (it == names.end()) it = names.insert(names.end(), r.scene);
-        const char* colour = colours[std::size_t(it - names.begin()) % 6];
-        char dot[256];
-        std::snprintf(dot, sizeof dot, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\"><title>%s %s %g</title></circle>\n",
-                      x(r.max_abs_err_outside), y(r.median_ms / r.full_median_ms), colour, r.scene.c_str(),
-                      r.skip.c_str(), r.threshold);
-        svg += dot;
-    }
-    for (std::size_t i = 0; i < names.size(); ++i) {
-        char key[200];
-        std::snprintf(key, sizeof key, "<text x=\"500\" y=\"%d\" fill=\"%s\">%s</text>\n", 60 + 18 * int(i),
-                      colours[i % 6], names[i].c_str());
-        svg += key;
-    }
-    svg += "</svg>\n";
-    io::write_atomically(path, [&](std::FILE* f) { io::write_all(f, svg, path); });
+    std::vector<ScatterPoint> points;
+    for (const Row& r : rows)
+        points.push_back({r.max_abs_err_outside, r.median_ms / r.full_median_ms, r.scene,
+                          r.scene + " " + r.skip + " " + (r.skip == "off" ? "" : std::to_string(int(r.threshold)))});
+    write_scatter_svg(path, points,
+                      {"vkfuse-bench --scenes on " + device + ": time against error",
+                       "max abs error outside fused cycles", "time / full"});
 }
 
 }  // namespace

@@ -112,6 +112,30 @@ TEST(SimMotion, SlideCrossesTheGelAndComesBack) {
     EXPECT_GE(xs.size(), 8u);
 }
 
+// render() gives a grabbed frame back byte for byte from its index, the
+// setting that lit it and its own instant, and at another instant shows that
+// instant's contact under the same noise: the frames a sliding window's
+// same-moment reference is fused from.
+TEST(SimMotion, RenderGivesAGrabbedFrameBackAndOtherInstantsTheirContact) {
+    const double period = 0.3;
+    SimDigit slide(locked("screw", SimMotion::Slide, period));
+    const Illumination setting = Illumination::parse("0,15,0");
+    slide.set_illumination(setting);
+    std::vector<Frame> frames;
+    for (int i = 0; i < 12; ++i) frames.push_back(slide.grab());
+    for (std::size_t i = 4; i < frames.size(); ++i) {  // past the switch from the power-on setting
+        const Frame& f = frames[i];
+        ASSERT_FALSE(slide.truth(f.index).mixed);
+        EXPECT_EQ(slide.render(f.index, setting, f.timestamp).pixels, f.pixels) << "frame " << f.index;
+        // The contact of frame i - 4 (another slide position), on frame i's noise.
+        const Frame earlier = slide.render(f.index, setting, frames[i - 4].timestamp);
+        const bool moved = slide.truth(frames[i - 4].index).contact_x != slide.truth(f.index).contact_x;
+        EXPECT_EQ(earlier.pixels != f.pixels, moved) << "frame " << f.index;
+    }
+    test::expect_error([&] { slide.render(0, Illumination::parse("16,0,0"), 0); }, "SIM-0001", ErrorKind::InvalidArgument,
+                 "16");
+}
+
 // A press (set_object) starts the motion over: its first frame is pressed.
 TEST(SimMotion, SetObjectStartsTheMotionOver) {
     const double period = 0.2;

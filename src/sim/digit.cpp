@@ -120,11 +120,12 @@ struct SimDigit::Impl {
         return std::max(next, std::uint64_t(std::floor(done + 1e-9)));
     }
 
-    std::vector<std::array<double, 3>> row_drives(double t) const {
+    std::vector<std::array<double, 3>> row_drives(double t) const { return row_drives(t, timeline); }
+    std::vector<std::array<double, 3>> row_drives(double t, const sim::LedTimeline& lit) const {
         std::vector<std::array<double, 3>> drives(std::size_t(grid.height));
         for (int r = 0; r < grid.height; ++r) {
             const double begin = t + r * shutter.row_time;
-            drives[std::size_t(r)] = timeline.mean_drive(begin, begin + exposure(), layout.max_level);
+            drives[std::size_t(r)] = lit.mean_drive(begin, begin + exposure(), layout.max_level);
         }
         return drives;
     }
@@ -181,6 +182,23 @@ Frame SimDigit::grab() {
     s.next = n + 1;
     // What lit frames before n + 1 can no longer matter.
     s.timeline.forget_before(s.frame_start(s.next));
+    return frame;
+}
+
+Frame SimDigit::render(std::uint64_t frame_index, const Illumination& setting, double contact_time) const {
+    const Impl& s = *impl_;
+    try {
+        setting.check(s.layout);
+    } catch (const Error& e) {
+        fail(s.options.serial, e.what());
+    }
+    Frame frame{frame_index, s.frame_start(frame_index), s.grid.height, s.grid.width,
+                std::vector<std::uint8_t>(s.grid.size() * 3), setting};
+    sim::NoiseStream rng(s.options.seed, frame_index);
+    const sim::Contact contact =
+        sim::contact_at(s.pressed, s.options.motion, s.options.motion_period_s, contact_time - s.pressed_since);
+    sim::expose(s.scenes.images(contact), s.row_drives(frame.timestamp, sim::LedTimeline(setting)), s.grid.width,
+                s.isp.readout(), s.noise, rng, frame.pixels.data());
     return frame;
 }
 

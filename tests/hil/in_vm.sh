@@ -49,6 +49,15 @@ vkfuse run --backend cpu --cycles 20 --background-frames 2 --method brovey --sen
 sed 's/^/hil: vkfuse run: /' /tmp/run.err | head -3
 echo "hil: vkfuse run: $(cut -c1-160 /tmp/run.json)"
 grep -q '"fused": 20' /tmp/run.json || failed=1
+# Sliding windows on the same unit: a fused image per clean frame, so about
+# twice the cycles' fused images per second of the unit's own clock.
+vkfuse run --backend cpu --cycles 20 --background-frames 2 --method brovey --sensor D20001 --window sliding \
+    >/tmp/slide.json 2>/tmp/slide.err || failed=1
+clock_fps() { sed -n 's/.*"sensor_clock_fps_min": \([0-9.e+-]*\).*/\1/p' "$1"; }
+echo "hil: vkfuse run --window sliding: $(cut -c1-160 /tmp/slide.json); cycles $(clock_fps /tmp/run.json), sliding $(clock_fps /tmp/slide.json) fused per second of sensor time"
+grep -q '"fused": 20' /tmp/slide.json && grep -q '"window": "sliding"' /tmp/slide.json || failed=1
+awk -v c="$(clock_fps /tmp/run.json)" -v s="$(clock_fps /tmp/slide.json)" 'BEGIN { exit !(c > 0 && s > 1.5 * c) }' || {
+    failed=1; echo "hil: sliding windows did not double the fused rate"; }
 # The same unit from Python (vkfuse.Rig), where run_hil.sh bundled it.
 if [ -x /usr/bin/python3 ]; then
     PYTHONPATH=/hil/python /usr/bin/python3 /hil/rig_from_python.py D20001 >/tmp/python.log 2>&1 || { failed=1; echo "hil: python: failed"; }

@@ -115,6 +115,16 @@ public:
     // returns the newest complete frame and the skipped indices never appear.
     Frame grab() override;
 
+    // Frame frame_index as the camera would read it out lit by setting alone
+    // and showing the contact of time contact_time (the sensor's clock, as
+    // frame timestamps) instead of its own: the same camera
+    // noise and the ISP's present readout. A grabbed frame that setting lit
+    // alone and that saw that contact comes out byte for byte. Rendering each
+    // slot of a window at one instant gives the frames a sliding window (or a
+    // cycle) stands in for: every setting at the same moment. Throws
+    // Error(InvalidArgument) naming the serial for a setting that does not fit.
+    Frame render(std::uint64_t frame_index, const Illumination& setting, double contact_time) const;
+
     // Ground truth of a frame this sensor produced; the last 4096 are kept.
     // Throws Error(InvalidArgument) for any other index.
     SimFrameTruth truth(std::uint64_t frame_index) const;
