@@ -33,9 +33,9 @@ void write_scatter_svg(const std::string& path, const std::vector<ScatterPoint>&
     auto y = [&](double v) { return kH - kB - (kH - kT - kB) * v / (top * 1.05); };
     std::string svg =
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"400\" font-family=\"sans-serif\" font-size=\"12\">\n";
-    svg += "<text x=\"70\" y=\"20\">" + xml_text(labels.title) + "</text>\n";
+    svg += "<text x=\"70\" y=\"16\">" + xml_text(labels.title) + "</text>\n";
     svg += "<text x=\"200\" y=\"390\">" + xml_text(labels.x) + " (log, 1e-6 .. 1)</text>\n";
-    svg += "<text x=\"5\" y=\"30\">" + xml_text(labels.y) + "</text>\n";
+    svg += "<text x=\"5\" y=\"34\">" + xml_text(labels.y) + "</text>\n";
     char axis[160];
     std::snprintf(axis, sizeof axis, "<text x=\"5\" y=\"%.1f\">%.3g</text>\n", y(top) + 4, top);
     svg += axis;
