@@ -169,9 +169,14 @@ TEST(CliRun, SlidingWindowsRecordOnceAndReplayTheSameBytes) {
     ASSERT_EQ(replayed.status, 0) << replayed.err;
     EXPECT_TRUE(has(replayed.out, "\"window\": \"sliding\"")) << replayed.out;
     expect_same_outputs(tmp, "live", "again");
+    // --window may repeat the recording's windows, never change them.
+    const CliResult same = run_cli({"run", "--replay", tmp.file("rec"), "--window", "sliding", "--out", tmp.file("same")});
+    ASSERT_EQ(same.status, 0) << same.err;
+    expect_same_outputs(tmp, "live", "same");
     const CliResult refused = run_cli({"run", "--replay", tmp.file("rec"), "--window", "cycle"});
-    EXPECT_EQ(refused.status, 2);
-    EXPECT_TRUE(has(refused.err, "--window does not apply to --replay")) << refused.err;
+    EXPECT_NE(refused.status, 0);
+    ASSERT_EQ(refused.err_lines().size(), 1u) << refused.err;
+    EXPECT_TRUE(has(refused.err, "--window cycle: " + tmp.file("rec") + " was recorded with sliding windows")) << refused.err;
 }
 
 // SIGINT: the run finishes the cycle in hand, flushes its files and exits 0.

@@ -49,15 +49,18 @@ vkfuse run --backend cpu --cycles 20 --background-frames 2 --method brovey --sen
 sed 's/^/hil: vkfuse run: /' /tmp/run.err | head -3
 echo "hil: vkfuse run: $(cut -c1-160 /tmp/run.json)"
 grep -q '"fused": 20' /tmp/run.json || failed=1
-# Sliding windows on the same unit: a fused image per clean frame, so about
-# twice the cycles' fused images per second of the unit's own clock.
+# Sliding windows on the same unit: every fused window's frames within the
+# bound its switch timing gives (the emulator's jitter under QEMU is tens of
+# milliseconds, and the CPU fusion here slower than the camera: the contract
+# holds whatever the pace).
 vkfuse run --backend cpu --cycles 20 --background-frames 2 --method brovey --sensor D20001 --window sliding \
-    >/tmp/slide.json 2>/tmp/slide.err || failed=1
-clock_fps() { sed -n 's/.*"sensor_clock_fps_min": \([0-9.e+-]*\).*/\1/p' "$1"; }
-echo "hil: vkfuse run --window sliding: $(cut -c1-160 /tmp/slide.json); cycles $(clock_fps /tmp/run.json), sliding $(clock_fps /tmp/slide.json) fused per second of sensor time"
+    --out /tmp/slide >/tmp/slide.json 2>/tmp/slide.err || failed=1
+bound=$(sed -n 's/.*"window_bound_s": \([0-9.e+-]*\).*/\1/p' /tmp/slide.json)
+widest=$(sed -n 's/.*"window_span_s": \([0-9.e+-]*\).*/\1/p' /tmp/slide/metrics.jsonl | awk 'w < $1 + 0 { w = $1 + 0 } END { print w + 0 }')
+echo "hil: vkfuse run --window sliding: $(cut -c1-160 /tmp/slide.json); widest window ${widest} s, bound ${bound} s"
 grep -q '"fused": 20' /tmp/slide.json && grep -q '"window": "sliding"' /tmp/slide.json || failed=1
-awk -v c="$(clock_fps /tmp/run.json)" -v s="$(clock_fps /tmp/slide.json)" 'BEGIN { exit !(c > 0 && s > 1.5 * c) }' || {
-    failed=1; echo "hil: sliding windows did not double the fused rate"; }
+awk -v w="$widest" -v b="$bound" 'BEGIN { exit !(b > 0 && w > 0 && w <= b) }' || {
+    failed=1; echo "hil: a sliding window spans more than its bound"; }
 # The same unit from Python (vkfuse.Rig), where run_hil.sh bundled it.
 if [ -x /usr/bin/python3 ]; then
     PYTHONPATH=/hil/python /usr/bin/python3 /hil/rig_from_python.py D20001 >/tmp/python.log 2>&1 || { failed=1; echo "hil: python: failed"; }

@@ -58,7 +58,7 @@ void check_replay_conflicts(const Args& args) {
     for (const char* option : kSimulatorOptions)
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
-    for (const char* option : {"--background-frames", "--sensor", "--encoding", "--config", "--window"})
+    for (const char* option : {"--background-frames", "--sensor", "--encoding", "--config"})
         if (args.has(option))
             args.usage_error(std::string(option) + " does not apply to --replay (the recording decides)");
 }
@@ -271,7 +271,12 @@ void adopt_recording(RunOptions& o, const Args& args, const Dataset& d) {
     if (d.sensors.empty()) fail(d.directory + ": the dataset has no sensors");
     if (d.run && !args.has("--sequence")) o.sequence = d.run->sequence;
     if (d.run) o.fusion = fusion_options(args, with_method(args, d.run->fusion));
-    if (d.run) o.window = d.run->window;
+    // A replay plays the windows as recorded: --window may only say so.
+    const FusionWindow recorded = d.run ? d.run->window : FusionWindow::Cycle;
+    if (args.has("--window") && o.window != recorded)
+        fail("--window " + std::string(to_string(o.window)) + ": " + d.directory + " was recorded with " +
+             std::string(to_string(recorded)) + " windows, and a replay plays them as recorded");
+    o.window = recorded;
     const std::vector<std::string> objects = d.objects();
     if (!args.has("--object")) {
         if (objects.empty()) fail(d.directory + ": the dataset holds no object frames");
