@@ -88,7 +88,7 @@ RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<I
             for (const std::string& s : options.serials)
                 if (!heard.count(s)) missing += (missing.empty() ? "" : ", ") + s;
             throw Error(ErrorKind::Timeout,
-                        "remote rig: " +
+                        "--source ros2: " +
                             (missing.empty() ? std::string("no capture host (vkfuse run --capture-only --publish ros2 "
                                                            "--publish-frames)")
                                              : "no capture host describes " + missing) +
@@ -107,7 +107,7 @@ RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<I
             out.sequence = rig.sequence;
             out.background_frames = rig.background_frames;
         } else if (rig.sequence != out.sequence || rig.background_frames != out.background_frames) {
-            throw Error(ErrorKind::InvalidArgument, "remote rig: " + serial + " cycles through " +
+            throw Error(ErrorKind::InvalidArgument, "--source ros2: " + serial + " cycles through " +
                                                         to_string(rig.sequence) + " with " +
                                                         std::to_string(rig.background_frames) +
                                                         " background frames, " + out.sensors.front().serial + " through " +

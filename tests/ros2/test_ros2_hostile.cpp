@@ -240,7 +240,7 @@ TEST(Ros2Hostile, NoCaptureHostIsOneLine) {
         FAIL() << "a sensor out of nothing";
     } catch (const Error& e) {
         EXPECT_EQ(e.kind(), ErrorKind::Timeout);
-        EXPECT_EQ(std::string(e.what()), "remote rig: no capture host describes NOBODY-1 in ROS domain " +
+        EXPECT_EQ(std::string(e.what()), "--source ros2: no capture host describes NOBODY-1 in ROS domain " +
                                              std::to_string(options.domain) + " within 0.5 s");
     }
 }

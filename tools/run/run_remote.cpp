@@ -15,14 +15,7 @@ RunSensors remote_sensors(RunOptions& o, const Args& args) {
     options.startup_timeout_s = o.startup_timeout_s;
     options.queue_cycles = o.source_queue;
     RunSensors out;
-    try {
-        out.remote = std::make_shared<ros2::RemoteRig>(options);
-    } catch (const Error& e) {
-        // The library speaks of a remote rig; the user asked for --source ros2.
-        const std::string what = e.what();
-        const std::string library = "remote rig: ";
-        throw Error(e.kind(), "--source ros2: " + (what.rfind(library, 0) == 0 ? what.substr(library.size()) : what));
-    }
+    out.remote = std::make_shared<ros2::RemoteRig>(options);
     out.judging = FrameJudging::Label;
     out.rig = out.remote->sensors();
     const ros2::RemoteDescription& d = out.remote->description();
