@@ -125,6 +125,7 @@ void run_capture(const CaptureJob& job) {
     // loses frames (and the watch that waiting could bring is a cycle late).
     const bool wait_for_verdicts = !job.sensor.clock || !job.sensor.clock->passes_on_its_own();
     bool last_watched = false;
+    std::uint64_t held_before = 0;  // windows held by switchers an error replaced
     for (std::uint64_t n = 0;;) {
         bool watch = false;
         if (may_watch) {
@@ -156,10 +157,13 @@ void run_capture(const CaptureJob& job) {
             hub.changed.notify_all();
             // The cycle in hand is abandoned with the scheduler's state; the
             // measured timing still holds for the same sensor.
-            if (const auto timing = slot_timing(hub, slot)) switcher = Switcher(*job.sensor.sensor, job.sensor.clock, *timing);
+            if (const auto timing = slot_timing(hub, slot)) {
+                held_before += switcher.windows_held();
+                switcher = Switcher(*job.sensor.sensor, job.sensor.clock, *timing);
+            }
             continue;
         }
-        if (!deliver(hub, slot, std::move(frames), switcher.windows_held())) return;
+        if (!deliver(hub, slot, std::move(frames), held_before + switcher.windows_held())) return;
         last_watched = watch;
         ++n;
     }

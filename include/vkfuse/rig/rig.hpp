@@ -40,8 +40,9 @@ struct RigConfig {
     FusionSpec fusion;
     IlluminationSequence sequence;  // K settings, one frame each per cycle
     FrameJudging judging = FrameJudging::Timing;
-    // Sliding, frames judged by label: a replay of a sliding run, whose
-    // windows were recorded whole and are played as recorded.
+    // Which frames each fused image is made of (FusionWindow). Sliding with
+    // frames judged by label: a replay of a sliding run, whose windows were
+    // recorded whole, played as they were recorded.
     FusionWindow window = FusionWindow::Cycle;
     SwitchCalibration calibration;
     // Frames per setting averaged into each sensor's background model before
