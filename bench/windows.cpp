@@ -75,8 +75,8 @@ Image fused_background(Switcher& switcher, const IlluminationSequence& seq) {
     return convert<float>(fuse_reference(means, FusionSpec{}));
 }
 
+// What the latencies need of each fused image: its newest frame.
 struct Taken {
-    std::vector<Frame> frames;
     double newest = 0;
     std::uint64_t newest_index = 0;
 };
@@ -118,23 +118,18 @@ void run_once(Plan& plan, const Scene& scene, const SwitchTiming& timing, Fusion
     std::vector<Taken> taken;
     double first = NAN;
     for (;;) {
-        Taken t;
-        t.frames = window == FusionWindow::Sliding ? switcher.next_window(seq) : switcher.next_cycle(seq);
-        double oldest = INFINITY;
-        for (const Frame& f : t.frames) {
-            if (f.timestamp >= t.newest) {
-                t.newest = f.timestamp;
-                t.newest_index = f.index;
-            }
-            oldest = std::min(oldest, f.timestamp);
-        }
+        const std::vector<Frame> frames =
+            window == FusionWindow::Sliding ? switcher.next_window(seq) : switcher.next_cycle(seq);
+        Taken t{newest_timestamp(frames), 0};
+        for (const Frame& f : frames)
+            if (f.timestamp == t.newest) t.newest_index = f.index;
         if (std::isnan(first)) first = t.newest;
         if (t.newest - first > kSeconds) break;
-        row.span_max_ms = std::max(row.span_max_ms, (t.newest - oldest) * 1e3);
+        row.span_max_ms = std::max(row.span_max_ms, window_span(frames) * 1e3);
         std::vector<Frame> instant;
-        for (int k = 0; k < K; ++k) instant.push_back(sim.render(t.frames[std::size_t(k)].index, seq[std::size_t(k)], t.newest));
+        for (int k = 0; k < K; ++k) instant.push_back(sim.render(frames[std::size_t(k)].index, seq[std::size_t(k)], t.newest));
         std::vector<FrameView> views;
-        for (const Frame& f : t.frames) views.push_back(f.view());
+        for (const Frame& f : frames) views.push_back(f.view());
         for (const Frame& f : instant) views.push_back(f.view());
         plan.run(views);
         const Image& a = plan.fused(0);
@@ -152,7 +147,7 @@ void run_once(Plan& plan, const Scene& scene, const SwitchTiming& timing, Fusion
         row.contrast_rel_err = std::max(row.contrast_rel_err, rel_err(ma.contrast, mb.contrast));
         row.background_diff_rel_err =
             std::max(row.background_diff_rel_err, rel_err(*ma.background_diff, *mb.background_diff));
-        taken.push_back(std::move(t));
+        taken.push_back(t);
     }
     row.images += int(taken.size());
     tally.fps_sum += double(taken.size() - 1) / (taken.back().newest - taken.front().newest);

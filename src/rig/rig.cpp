@@ -442,17 +442,9 @@ std::uint64_t Rig::submits() const { return impl_->engine ? impl_->engine->submi
 
 int Rig::cycles_in_flight() const { return impl_->engine ? impl_->engine->cycles_in_flight() : 1; }
 
-double SensorCycle::newest_timestamp() const {
-    double t = frames.empty() ? 0.0 : frames.front().timestamp;
-    for (const Frame& f : frames) t = std::max(t, f.timestamp);
-    return t;
-}
+double SensorCycle::newest_timestamp() const { return vkfuse::newest_timestamp(frames); }
 
-double SensorCycle::window_span_s() const {
-    double t = newest_timestamp();
-    for (const Frame& f : frames) t = std::min(t, f.timestamp);
-    return newest_timestamp() - t;
-}
+double SensorCycle::window_span_s() const { return window_span(frames); }
 
 std::string_view to_string(SensorStatus status) {
     switch (status) {

@@ -291,18 +291,10 @@ std::vector<Frame> Switcher::Impl::window_by_timing() {
             entering = 0;
         }
         if (!std::all_of(newest.begin(), newest.end(), [](const auto& f) { return f.has_value(); })) continue;
-        double oldest = kNever, latest = -kNever;
-        for (const auto& f : newest) {
-            oldest = std::min(oldest, f->timestamp);
-            latest = std::max(latest, f->timestamp);
-        }
-        if (latest - oldest > bound + kRounding) {
-            ++held;
-            continue;
-        }
         std::vector<Frame> out;
         for (const auto& f : newest) out.push_back(*f);
-        return out;
+        if (window_span(out) <= bound + kRounding) return out;
+        ++held;
     }
 }
 
@@ -314,6 +306,19 @@ FusionWindow parse_fusion_window(std::string_view name, std::string_view what) {
     for (FusionWindow w : {FusionWindow::Cycle, FusionWindow::Sliding})
         if (name == to_string(w)) return w;
     throw Error(ErrorKind::InvalidArgument, std::string(what) + " " + std::string(name) + ": expected cycle or sliding");
+}
+
+double newest_timestamp(std::span<const Frame> frames) {
+    double t = frames.empty() ? 0.0 : frames.front().timestamp;
+    for (const Frame& f : frames) t = std::max(t, f.timestamp);
+    return t;
+}
+
+double window_span(std::span<const Frame> frames) {
+    const double newest = newest_timestamp(frames);
+    double oldest = newest;
+    for (const Frame& f : frames) oldest = std::min(oldest, f.timestamp);
+    return newest - oldest;
 }
 
 double window_bound(const SwitchTiming& timing, std::size_t settings) {

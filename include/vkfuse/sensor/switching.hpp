@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -87,6 +88,12 @@ FusionWindow parse_fusion_window(std::string_view name, std::string_view what = 
 // from the oldest frame's timestamp to the newest's: one sequence period (K
 // switches, each as soon as the last frame allows) plus the LED latency.
 double window_bound(const SwitchTiming& timing, std::size_t settings);
+
+// The newest timestamp among frames (when their window was complete), and
+// how long before it the oldest was taken: what window_bound limits (0 for
+// no frames).
+double newest_timestamp(std::span<const Frame> frames);
+double window_span(std::span<const Frame> frames);
 
 // Fetches frames lit entirely by requested settings from one sensor (used by
 // one thread). Two ways to judge a frame:
