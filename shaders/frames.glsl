@@ -36,6 +36,18 @@ Quad frame_quad(uint f, uint i) {
     return Quad(vec4(q0.x, q0.w, q1.z, q2.y), vec4(q0.y, q1.x, q1.w, q2.z), vec4(q0.z, q1.y, q2.x, q2.w));
 }
 
+// Channel c of frame f's pixels 4i .. 4i+3 (C = 3): of float32 frames only
+// that channel's four samples are read, not the quad's twelve.
+vec4 frame_channel_quad(uint f, uint i, uint c) {
+    if (pc.is_u8 != 0u) {
+        Quad q = frame_quad(f, i);
+        return c == 0u ? q.c0 : c == 1u ? q.c1 : q.c2;
+    }
+    uint first = (f * pc.pixels + 4u * i) * 3u + c;
+    return uintBitsToFloat(uvec4(BUF(frame_words).v[first], BUF(frame_words).v[first + 3u],
+                                 BUF(frame_words).v[first + 6u], BUF(frame_words).v[first + 9u]));
+}
+
 // Channel c of pixel p of frame f.
 float frame_sample(uint f, uint p, uint c) {
     uint idx = (f * pc.pixels + p) * pc.channels + c;

@@ -11,7 +11,7 @@
 #define VKFUSE_RULE_MAX 2u
 #define VKFUSE_RULE_MIN 3u
 
-// pointwise_fuse.comp's `method`: which per-pixel fusion it runs.
+// pointwise_fuse.comp's METHOD (a specialization constant): which per-pixel fusion it runs.
 #define VKFUSE_POINTWISE_BROVEY 0u
 #define VKFUSE_POINTWISE_CHANNEL_SUM 1u
 #define VKFUSE_POINTWISE_MEAN 2u  // the background model's mean of K frames

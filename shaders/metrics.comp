@@ -107,6 +107,14 @@ Moments combine(Moments a, Moments b) {
 
 shared vec2 shared_sums[WG];
 shared vec3 shared_moments[WG];
+const uint SPAN = 16u;  // WG = SPAN * SPAN
+
+// Result i of the workgroup's into a running total.
+void add_shared(inout vec2 sums, inout Moments m, uint i) {
+    sums += shared_sums[i];
+    vec3 b = shared_moments[i];
+    m = combine(m, Moments(b.x, b.y, b.z));
+}
 
 void kahan_add(inout vec2 sum, inout vec2 comp, vec2 v) {
     precise vec2 y = v - comp;
@@ -181,24 +189,29 @@ void main() {
             b = nb;
         }
     }
-    // The workgroup's 256 results, added as a fixed binary tree: no atomics,
-    // the same bits every run.
+    // The workgroup's 256 results, added in a fixed order (no atomics: the
+    // same bits every run): SPAN invocations each add a run of SPAN, then the
+    // first adds theirs. Two barriers rather than a binary tree's one per
+    // level: on lavapipe a barrier suspends and resumes every SIMD batch of
+    // the group, and each level of a tree runs its masked-off batches too.
     uint tid = gl_LocalInvocationIndex;
     shared_sums[tid] = sums - comp;
     shared_moments[tid] = vec3(m.n, m.mean, m.m2);
     barrier();
-    for (uint stride = WG / 2u; stride > 0u; stride >>= 1u) {
-        if (tid < stride) {
-            shared_sums[tid] += shared_sums[tid + stride];
-            vec3 a = shared_moments[tid], b = shared_moments[tid + stride];
-            Moments c = combine(Moments(a.x, a.y, a.z), Moments(b.x, b.y, b.z));
-            shared_moments[tid] = vec3(c.n, c.mean, c.m2);
-        }
-        barrier();
+    if (tid < SPAN) {
+        vec2 run = vec2(0.0);
+        Moments acc = Moments(0.0, 0.0, 0.0);
+        for (uint k = 0u; k < SPAN; ++k) add_shared(run, acc, tid * SPAN + k);
+        shared_sums[tid * SPAN] = run;
+        shared_moments[tid * SPAN] = vec3(acc.n, acc.mean, acc.m2);
     }
+    barrier();
     if (tid == 0u) {
+        vec2 total = vec2(0.0);
+        Moments acc = Moments(0.0, 0.0, 0.0);
+        for (uint k = 0u; k < SPAN; ++k) add_shared(total, acc, k * SPAN);
         uint o = (s * pc.groups + g) * 2u;
-        BUF(partials).v[o] = vec4(shared_sums[0], shared_moments[0].x, shared_moments[0].y);
-        BUF(partials).v[o + 1u] = vec4(shared_moments[0].z, 0.0, 0.0, 0.0);
+        BUF(partials).v[o] = vec4(total, acc.n, acc.mean);
+        BUF(partials).v[o + 1u] = vec4(acc.m2, 0.0, 0.0, 0.0);
     }
 }

@@ -18,8 +18,6 @@ layout(push_constant, std430) uniform Push {
     uint pixels;
     uint channels;
     uint is_u8;
-    uint frames;
-    uint method;  // VKFUSE_POINTWISE_* (kernel_codes.h)
     uint scaled_threshold;  // brovey: sensor s compares with thresholds.v[s]
     uint quads;   // pixels % 4 == 0
     uint write_planes;  // the metrics read them
@@ -29,12 +27,20 @@ layout(push_constant, std430) uniform Push {
 #define VKFUSE_WRITES_IMAGES
 #include "frames.glsl"
 
+// The method and K are specialization constants, so that each pipeline holds
+// one method's code with its loops over the frames unrolled: lavapipe runs
+// both sides of every branch it cannot skip, and keeps unrolled values in
+// registers rather than reading them again.
+layout(constant_id = 0) const uint METHOD = VKFUSE_POINTWISE_MEAN;  // VKFUSE_POINTWISE_* (kernel_codes.h)
+layout(constant_id = 1) const uint FRAMES = 1u;                     // K
+
 // docs/spec.md's s >= 1e-6, with the threshold the smallest float >= 1e-6
 // (0x358637BE; the literal 1e-6 rounds below it, to 9.99999997e-7, which
 // would take the ratio for a sum that is below 1e-6). Float32 frames reach the
 // device scaled by a power of two per sensor (vk/engine/magnitude.hpp), and so does
 // this threshold, written by the host every run; 8-bit frames never are.
 float brovey_threshold(uint s) {
+    if (METHOD != VKFUSE_POINTWISE_BROVEY) return 0.0;
     return pc.scaled_threshold != 0u ? BUF(thresholds).v[s] : uintBitsToFloat(0x358637BEu);
 }
 
@@ -49,7 +55,7 @@ struct Fuser {
 };
 
 void fuser_add(inout Fuser f, vec4 v) {
-    if (pc.method == VKFUSE_POINTWISE_MEAN) {  // Kahan-compensated: a plain float sum of 100 frames drifts by ~1e-5
+    if (METHOD == VKFUSE_POINTWISE_MEAN) {  // Kahan-compensated: a plain float sum of 100 frames drifts by ~1e-5
         precise vec4 y = v - f.b;
         precise vec4 t = f.a + y;
         f.b = (t - f.a) - y;
@@ -63,51 +69,67 @@ void fuser_add(inout Fuser f, vec4 v) {
 void fuser_weigh(inout Fuser f, vec4 v) { f.b += (max(v, 0.0) / f.a) * v; }
 
 vec4 fuser_result(Fuser f, float threshold) {
-    if (pc.method == VKFUSE_POINTWISE_MEAN) return f.a / float(pc.frames);
-    return mix(f.mean_sum / float(pc.frames), f.b, greaterThanEqual(f.a, vec4(threshold)));
+    if (METHOD == VKFUSE_POINTWISE_MEAN) return f.a / float(FRAMES);
+    return mix(f.mean_sum / float(FRAMES), f.b, greaterThanEqual(f.a, vec4(threshold)));
 }
 
-void main() {
-    uint i = linear_index(256u), s = gl_WorkGroupID.z, C = pc.channels, K = pc.frames;
-    if (i >= (pc.quads != 0u ? pc.pixels / 4u : pc.pixels)) return;
-    float threshold = pc.method == VKFUSE_POINTWISE_BROVEY ? brovey_threshold(s) : 0.0;
-    if (pc.quads == 0u) {
-        for (uint c = 0u; c < C; ++c) {
-            float v;
-            if (pc.method == VKFUSE_POINTWISE_CHANNEL_SUM) {  // channel c comes from frame c (lit by LED c alone)
-                v = frame_sample(s * K + c, i, c);
-            } else {
-                Fuser f = Fuser(vec4(0.0), vec4(0.0), vec4(0.0));
-                for (uint k = 0u; k < K; ++k) fuser_add(f, vec4(frame_sample(s * K + k, i, c), 0.0, 0.0, 0.0));
-                if (pc.method == VKFUSE_POINTWISE_BROVEY)
-                    for (uint k = 0u; k < K; ++k) fuser_weigh(f, vec4(frame_sample(s * K + k, i, c), 0.0, 0.0, 0.0));
-                v = fuser_result(f, threshold).x;
-            }
-            if (pc.write_planes != 0u) BUF(dst).v[(s * C + c) * pc.pixels + i] = TO_PLANE(v);
-            if (pc.write_image != 0u) store_image_sample(s, i, c, v);
+// Channel c of sensor s's fused pixel p.
+float fuse_sample(uint s, uint p, uint c, float threshold) {
+    uint K = FRAMES;
+    if (METHOD == VKFUSE_POINTWISE_CHANNEL_SUM) return frame_sample(s * K + c, p, c);  // channel c lit by LED c alone
+    Fuser f = Fuser(vec4(0.0), vec4(0.0), vec4(0.0));
+    for (uint k = 0u; k < K; ++k) fuser_add(f, vec4(frame_sample(s * K + k, p, c), 0.0, 0.0, 0.0));
+    if (METHOD == VKFUSE_POINTWISE_BROVEY)
+        for (uint k = 0u; k < K; ++k) fuser_weigh(f, vec4(frame_sample(s * K + k, p, c), 0.0, 0.0, 0.0));
+    return fuser_result(f, threshold).x;
+}
+
+// Sensor s's fused pixels 4i .. 4i+3 (planes of whole quads).
+Quad fuse_quad(uint s, uint i, float threshold) {
+    uint K = FRAMES;
+    if (METHOD == VKFUSE_POINTWISE_CHANNEL_SUM)
+        return Quad(frame_channel_quad(s * K, i, 0u), frame_channel_quad(s * K + 1u, i, 1u),
+                    frame_channel_quad(s * K + 2u, i, 2u));
+    Fuser f0 = Fuser(vec4(0.0), vec4(0.0), vec4(0.0)), f1 = f0, f2 = f0;
+    if (METHOD == VKFUSE_POINTWISE_BROVEY) {
+        // Both rounds from the frames read once: unrolled (K up to lavapipe's
+        // 32), the quads stay in registers.
+        Quad q[FRAMES];
+        for (uint k = 0u; k < K; ++k) {
+            q[k] = frame_quad(s * K + k, i);
+            fuser_add(f0, q[k].c0);
+            fuser_add(f1, q[k].c1);
+            fuser_add(f2, q[k].c2);
         }
-        return;
-    }
-    Quad out_;
-    if (pc.method == VKFUSE_POINTWISE_CHANNEL_SUM) {
-        out_ = Quad(frame_quad(s * K, i).c0, frame_quad(s * K + 1u, i).c1, frame_quad(s * K + 2u, i).c2);
+        for (uint k = 0u; k < K; ++k) {
+            fuser_weigh(f0, q[k].c0);
+            fuser_weigh(f1, q[k].c1);
+            fuser_weigh(f2, q[k].c2);
+        }
     } else {
-        Fuser f0 = Fuser(vec4(0.0), vec4(0.0), vec4(0.0)), f1 = f0, f2 = f0;
         for (uint k = 0u; k < K; ++k) {
             Quad q = frame_quad(s * K + k, i);
             fuser_add(f0, q.c0);
             fuser_add(f1, q.c1);
             fuser_add(f2, q.c2);
         }
-        if (pc.method == VKFUSE_POINTWISE_BROVEY)
-            for (uint k = 0u; k < K; ++k) {
-                Quad q = frame_quad(s * K + k, i);
-                fuser_weigh(f0, q.c0);
-                fuser_weigh(f1, q.c1);
-                fuser_weigh(f2, q.c2);
-            }
-        out_ = Quad(fuser_result(f0, threshold), fuser_result(f1, threshold), fuser_result(f2, threshold));
     }
+    return Quad(fuser_result(f0, threshold), fuser_result(f1, threshold), fuser_result(f2, threshold));
+}
+
+void main() {
+    uint i = linear_index(256u), s = gl_WorkGroupID.z, C = pc.channels;
+    if (i >= (pc.quads != 0u ? pc.pixels / 4u : pc.pixels)) return;
+    float threshold = brovey_threshold(s);
+    if (pc.quads == 0u) {
+        for (uint c = 0u; c < C; ++c) {
+            float v = fuse_sample(s, i, c, threshold);
+            if (pc.write_planes != 0u) BUF(dst).v[(s * C + c) * pc.pixels + i] = TO_PLANE(v);
+            if (pc.write_image != 0u) store_image_sample(s, i, c, v);
+        }
+        return;
+    }
+    Quad out_ = fuse_quad(s, i, threshold);
     if (pc.write_planes != 0u) {
         uint o = (s * C * pc.pixels) / 4u + i, stride = pc.pixels / 4u;
         BUF(dst4).v[o] = TO_PLANE4(out_.c0);

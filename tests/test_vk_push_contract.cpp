@@ -82,9 +82,9 @@ TEST_F(PushContract, EveryDispatchOfEveryMethodNamesItsFields) {
 TEST_F(PushContract, AKernelWhosePushFieldsMovedIsRefusedNamingTheField) {
     Context context(validated_options());
     Context::Impl& impl = vk::ContextAccess::of(context);
-    // pointwise_fuse.comp's block: pixels, channels, is_u8, frames, method, ...
+    // pointwise_fuse.comp's block: pixels, channels, is_u8, scaled_threshold, quads, ...
     impl.use_kernel_interface("pointwise_fuse",
-                              vk::reflect_kernel(with_swapped_members(vk::shader_spirv("pointwise_fuse"), "frames", "method")));
+                              vk::reflect_kernel(with_swapped_members(vk::shader_spirv("pointwise_fuse"), "is_u8", "quads")));
     PlanConfig cfg;
     cfg.fusion = spec_of(Method::Brovey);
     cfg.height = 24;
@@ -97,8 +97,8 @@ TEST_F(PushContract, AKernelWhosePushFieldsMovedIsRefusedNamingTheField) {
         const std::string what = e.what();
         EXPECT_EQ(e.kind(), ErrorKind::Device) << what;
         EXPECT_NE(what.find("pointwise_fuse"), std::string::npos) << what;
-        EXPECT_NE(what.find("uint method at byte 12"), std::string::npos) << what;
-        EXPECT_NE(what.find("gave uint frames at byte 12"), std::string::npos) << what;
+        EXPECT_NE(what.find("uint quads at byte 8"), std::string::npos) << what;
+        EXPECT_NE(what.find("gave uint is_u8 at byte 8"), std::string::npos) << what;
     }
     // The unmodified kernel in another context still builds.
     EXPECT_NO_THROW(Plan(ctx(), cfg));

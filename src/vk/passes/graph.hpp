@@ -100,7 +100,7 @@ private:
 // planes (S*C planes of H x W, plane s*C + c).
 // Brovey, channel-sum and the mean read the frames as uploaded and write the
 // fused image into `image` themselves (when given): no unpack, no pack.
-// `kernel` is the method id shaders/pointwise_fuse.comp switches on (a
+// `kernel` is the method shaders/pointwise_fuse.comp is specialized for (a
 // method's is in its Vulkan row), `stage` the name --profile reports.
 inline constexpr std::uint32_t kPointwiseMean = VKFUSE_POINTWISE_MEAN;  // the background model's mean
 VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::optional<DeviceSpan> image,

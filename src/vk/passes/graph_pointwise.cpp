@@ -17,13 +17,12 @@ VkDeviceAddress record_pointwise(GraphBuilder& g, DeviceSpan frames, std::option
             .u32("pixels", pixels)
             .u32("channels", std::uint32_t(g.cfg.channels))
             .u32("is_u8", g.cfg.input == PixelType::U8)
-            .u32("frames", std::uint32_t(g.cfg.frames))
-            .u32("method", kernel)
             .u32("scaled_threshold", g.brovey_thresholds ? 1 : 0)
             .u32("quads", quads)
             .u32("write_planes", !g.cfg.metrics.empty())
             .u32("write_image", image.has_value()),
-        Recorder::LinearWork{quads ? pixels / 4 : pixels, std::uint32_t(g.cfg.sensors)});
+        Recorder::LinearWork{quads ? pixels / 4 : pixels, std::uint32_t(g.cfg.sensors)},
+        std::array<std::uint32_t, 2>{kernel, std::uint32_t(g.cfg.frames)});  // METHOD and FRAMES
     g.rec.mark(stage);
     return out;
 }

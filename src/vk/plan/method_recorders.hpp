@@ -36,7 +36,7 @@ struct MethodRecorder {
     // writes `image` (the read-back HWC images) when given one.
     VkDeviceAddress (*record)(GraphBuilder& g, FrameSource& input, std::optional<DeviceSpan> image,
                               std::uint32_t pointwise_kernel);
-    // Pointwise: the method id shaders/pointwise_fuse.comp switches on.
+    // Pointwise: the method shaders/pointwise_fuse.comp is specialized for.
     std::uint32_t pointwise_kernel;
     // Device floats the method keeps beyond the upload, the unpacked input and
     // the fused planes, per input float (S*K*C*H*W) and per output float
