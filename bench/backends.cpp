@@ -120,4 +120,22 @@ CellResult measure_vulkan(Context& context, const Cell& cell, const Inputs& in, 
     return r;
 }
 
+Timing time_empty_cycle(Context& context, const RunPolicy& policy) {
+    PlanConfig cfg;
+    cfg.fusion.method = Method::Brovey;
+    cfg.height = cfg.width = 4;
+    cfg.channels = 3;
+    cfg.frames = 2;
+    cfg.input = PixelType::F32;
+    cfg.metrics = MetricSet();
+    Plan plan(context, cfg);
+    Image frame(4, 4, 3);
+    std::fill(frame.data.begin(), frame.data.end(), 0.5f);
+    const std::vector<FrameView> views{FrameView::of(frame), FrameView::of(frame)};
+    return time_cycles(policy, [&] {
+        plan.run(views);
+        plan.fused(0);
+    });
+}
+
 }  // namespace vkfuse::bench

@@ -24,4 +24,9 @@ CellResult measure_cpu(const Cell& cell, const Inputs& in, const std::vector<Exp
 CellResult measure_vulkan(Context& context, const Cell& cell, const Inputs& in, const std::vector<Expected>& expected,
                           const RunPolicy& policy, bool profile);
 
+// The fixed cost of a cycle on this device, what every cell pays whatever its
+// work: a plan whose one small dispatch fuses a 4x4 image (brovey, K = 2, no
+// metrics), run and read back as measure_vulkan runs a cell.
+Timing time_empty_cycle(Context& context, const RunPolicy& policy);
+
 }  // namespace vkfuse::bench

@@ -48,6 +48,7 @@ struct Environment {
     std::string no_access;  // why access is empty
     std::optional<vk::CopyBandwidth> copy;
     std::optional<vk::KernelAccess> access;
+    std::optional<Timing> empty_cycle;  // time_empty_cycle: the fixed cost every cell pays
     std::optional<PeerRunner> peers;
     std::optional<PeerRunner> cpp_peer;  // bench/peers/opencv_peer.cpp
     std::string peer_script, cpp_peer_program;  // where they are, installed or built
@@ -87,6 +88,11 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
             } catch (const std::exception& e) {
                 env.no_access = e.what();
             }
+        // Enough runs for a stable median of a sub-millisecond cycle.
+        if (env.vulkan) try {
+                env.empty_cycle = time_empty_cycle(*env.vulkan, {5, o.scope == Scope::Quick ? 50 : 300});
+            } catch (const Error&) {  // the cells then say what fails; the floor leaves the fixed cost out
+            }
     }
     if (o.peers && !o.probe) {
         env.peer_script = beside_program(VKFUSE_BENCH_INSTALLED_PEER_SCRIPT, VKFUSE_BENCH_PEER_SCRIPT);
@@ -123,6 +129,10 @@ void print_device(const Environment& env) {
             print_kernel_access(*env.access);
         else
             std::printf("kernel access: probe failed (%s)\n", env.no_access.c_str());
+        if (env.empty_cycle)
+            std::printf("cycle fixed cost: %.3g ms median, %.3g min of %d (a 4x4 plan's cycle: frames in, one small "
+                        "dispatch, submit, wait, image out)\n",
+                        env.empty_cycle->median_ms, env.empty_cycle->min_ms, env.empty_cycle->runs);
     } else if (!env.no_vulkan.empty()) {
         std::printf("vulkan: not available (%s); vulkan cells are skipped\n", env.no_vulkan.c_str());
     }
@@ -175,7 +185,9 @@ CellResult measure(Environment& env, const Options& o, const Cell& c, const Inpu
     if (c.backend == Backend::Vulkan && env.copy) r.copy_bandwidth = env.copy->bytes_per_second();
     if (c.backend == Backend::Vulkan && env.access) {
         r.kernel_copy_ns = env.access->device_addresses ? env.access->address_ns : env.access->bound_ns;
-        r.floor_ms = floor_ms(ideal_pipeline(c, false), *env.access);  // the bench uploads float32 frames
+        r.cycle_fixed_ms = env.empty_cycle ? std::optional(env.empty_cycle->median_ms) : std::nullopt;
+        // The bench uploads float32 frames.
+        r.floor_ms = floor_ms(ideal_pipeline(c, false), *env.access, r.cycle_fixed_ms.value_or(0));
     }
     r.load_average = load;
     return r;

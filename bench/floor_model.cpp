@@ -163,10 +163,11 @@ PipelineCost ideal_pipeline(const Cell& c, bool eight_bit_input) {
     return p;
 }
 
-double floor_ms(const PipelineCost& p, const vk::KernelAccess& device) {
+double floor_ms(const PipelineCost& p, const vk::KernelAccess& device, double cycle_fixed_ms) {
     const double access_ns = device.bound_vec4_ns / 2;
     const double flop_ns = device.fma_gflops > 0 ? 1.0 / device.fma_gflops : 0;
-    return (p.accesses * access_ns + p.flops * flop_ns) * 1e-6 + p.dispatches * device.dispatch_us * 1e-3;
+    const int further = cycle_fixed_ms > 0 ? p.dispatches - 1 : p.dispatches;
+    return cycle_fixed_ms + (p.accesses * access_ns + p.flops * flop_ns) * 1e-6 + further * device.dispatch_us * 1e-3;
 }
 
 }  // namespace vkfuse::bench

@@ -21,9 +21,10 @@ struct PipelineCost {
 // periodization, the bench's mode.
 PipelineCost ideal_pipeline(const Cell& c, bool eight_bit_input);
 
-// Its time on the probed device: accesses at half a bound vec4 copy's cost per
-// float (a copy is a read and a write), flops at the multiply-add rate, and one
-// small dispatch each.
-double floor_ms(const PipelineCost& p, const vk::KernelAccess& device);
+// Its time on the probed device: the fixed cost of a cycle (an empty cycle,
+// which holds one small dispatch; 0 where not measured), accesses at half a
+// bound vec4 copy's cost per float (a copy is a read and a write), flops at
+// the multiply-add rate, and one small dispatch for each further pass.
+double floor_ms(const PipelineCost& p, const vk::KernelAccess& device, double cycle_fixed_ms = 0);
 
 }  // namespace vkfuse::bench

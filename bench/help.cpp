@@ -47,7 +47,8 @@ Output:
                     mean_abs_err, samples_over_1e-5, checked_sensors,
                     metric_rel_err{sharpness, contrast, background_diff}, kernel_ms,
                     bytes_per_cycle, copy_bandwidth_gbs, bandwidth_fraction,
-                    kernel_copy_ns_per_float, floor_ms (the ideal pipeline for the
+                    kernel_copy_ns_per_float, cycle_fixed_ms (an empty cycle:
+                    what every cycle pays on this device), floor_ms (the ideal pipeline for the
                     cell at this device's probed costs), floor_fraction
                     (floor_ms / median_ms), peer, peer_failure, peer_median_ms,
                     peer_ms_per_sensor, peer_runs, peer_max_abs_err,

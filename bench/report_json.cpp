@@ -77,6 +77,7 @@ void add_measurements(Members& o, const CellResult& r) {
     o.add("copy_bandwidth_gbs", r.copy_bandwidth ? std::optional<double>(*r.copy_bandwidth * 1e-9) : std::nullopt);
     o.add("bandwidth_fraction", m ? r.bandwidth_fraction() : std::nullopt);
     o.add("kernel_copy_ns_per_float", r.kernel_copy_ns);
+    o.add("cycle_fixed_ms", r.cycle_fixed_ms);
     o.add("floor_ms", m ? r.floor_ms : std::nullopt).add("floor_fraction", r.floor_fraction());
     o.add("load_average", when(r.load_average));
 }
@@ -105,7 +106,7 @@ const std::vector<std::string>& json_required_fields() {
         "method", "wavelet", "levels", "backend", "device", "driver", "precision", "width", "height", "frames", "sensors",
         "skipped", "median_ms", "min_ms", "max_ms", "runs", "throughput_cycles_s", "mpixels_s", "max_abs_err",
         "mean_abs_err", "samples_over_1e-5", "metric_rel_err", "kernel_ms", "bytes_per_cycle", "copy_bandwidth_gbs",
-        "bandwidth_fraction", "kernel_copy_ns_per_float", "floor_ms", "floor_fraction", "peer", "peer_median_ms",
+        "bandwidth_fraction", "kernel_copy_ns_per_float", "cycle_fixed_ms", "floor_ms", "floor_fraction", "peer", "peer_median_ms",
         "peer_max_abs_err", "peer_speedup", "cpp_peer", "cpp_peer_median_ms", "cpp_peer_max_abs_err", "cpp_peer_speedup"};
     return fields;
 }

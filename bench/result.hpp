@@ -68,6 +68,7 @@ struct CellResult {
     std::optional<double> bytes_per_cycle;  // uploads + readback, Vulkan only
     std::optional<double> copy_bandwidth;   // bytes/s of a device buffer copy, this run
     std::optional<double> kernel_copy_ns;   // ns per float a kernel copies via device addresses, this run
+    std::optional<double> cycle_fixed_ms;   // an empty cycle's median on this device (time_empty_cycle), Vulkan only
     std::optional<double> floor_ms;         // the ideal pipeline on this device (floor_model.hpp), Vulkan only
     std::optional<PeerResult> peer;      // the Python pipeline of the method
     std::optional<PeerResult> cpp_peer;  // the OpenCV C++ pipeline (Laplacian, Brovey, channel-sum cells)

@@ -103,6 +103,8 @@ TEST(FloorModel, PricedAtTheProbedCosts) {
     device.dispatch_us = 10.0;
     const PipelineCost p{1e6, 2e6, 3};
     EXPECT_NEAR(floor_ms(p, device), 1.0 + 2.0 + 0.03, 1e-12);
+    // An empty cycle's cost holds the first dispatch's.
+    EXPECT_NEAR(floor_ms(p, device, 0.5), 0.5 + 1.0 + 2.0 + 0.02, 1e-12);
 }
 
 }  // namespace
