@@ -27,7 +27,6 @@ layout(push_constant, std430) uniform Push {
     uint src_plane_stride;
     uint block_plane_stride;  // of approx and fused
     int approx_w;     // columns [0, approx_w) hold the row pass's low half
-    uint frames;
     uint channels;
     uint base_rule;
     uint detail_rule;
@@ -36,6 +35,10 @@ layout(push_constant, std430) uniform Push {
     uint slot_planes; // channels
 } pc;
 #include "sparse.glsl"
+// K, after filter_taps.glsl's constants: the loop over the frames unrolls, and
+// each frame's rule state stays in registers (on lavapipe a value updated in a
+// loop of unknown length lives in memory, under a mask).
+layout(constant_id = 41) const uint FRAMES = 1u;
 
 void main() {
     int x = int(gl_GlobalInvocationID.x), block = int(gl_GlobalInvocationID.y);
@@ -47,8 +50,8 @@ void main() {
     bool keep_approx = low_columns && pc.deepest == 0u;
     uint low_rule = (low_columns && pc.deepest != 0u) ? pc.base_rule : pc.detail_rule;
     RuleState low[BLOCK], high[BLOCK];
-    for (uint k = 0u; k < pc.frames; ++k) {
-        uint plane = (s * pc.frames + k) * pc.channels + c;
+    for (uint k = 0u; k < FRAMES; ++k) {
+        uint plane = (s * FRAMES + k) * pc.channels + c;
         uint column = plane * pc.src_plane_stride + uint(x);
         float win[WINDOW];
         [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)
@@ -66,7 +69,7 @@ void main() {
         int o = o0 + b;
         if (o >= pc.half_len) break;
         uint at = z * pc.block_plane_stride + uint(o * pc.row_stride + x);
-        BUF(fused).v[at] = TO_PLANE(rule_result(low[b], low_rule, pc.frames));
-        BUF(fused).v[at + uint(pc.half_len * pc.row_stride)] = TO_PLANE(rule_result(high[b], pc.detail_rule, pc.frames));
+        BUF(fused).v[at] = TO_PLANE(rule_result(low[b], low_rule, FRAMES));
+        BUF(fused).v[at + uint(pc.half_len * pc.row_stride)] = TO_PLANE(rule_result(high[b], pc.detail_rule, FRAMES));
     }
 }

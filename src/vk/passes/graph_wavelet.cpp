@@ -149,9 +149,11 @@ class WaveletGraph {
 public:
     WaveletGraph(GraphBuilder& g) : g_(g), spec_(g.cfg.fusion) {
         periodization_ = spec_.mode == WaveletMode::Periodization;
-        if (periodization_)
+        if (periodization_) {
             taps_ = filter_specialization(spec_.wavelet);
-        else
+            taps_and_frames_ = taps_;
+            taps_and_frames_.push_back(std::uint32_t(g.cfg.frames));  // dwt_fuse_columns.comp's FRAMES
+        } else
             scheme_ = g.constants(lifting_constants(spec_.wavelet));
         shapes_ = level_shapes(g.cfg);
     }
@@ -226,7 +228,7 @@ private:
     const FusionSpec& spec_;
     bool periodization_ = true;
     VkDeviceAddress scheme_ = 0;  // symmetric mode: the lifting scheme
-    std::vector<std::uint32_t> taps_;
+    std::vector<std::uint32_t> taps_, taps_and_frames_;
     std::vector<LevelShape> shapes_;
 
     int high(int n, int half) const { return periodization_ ? half : n - half; }
@@ -399,7 +401,6 @@ private:
                             .u32("src_plane_stride", rows.plane_stride)
                             .u32("block_plane_stride", coeffs.plane_stride)
                             .i32("approx_w", s.cw)
-                            .u32("frames", std::uint32_t(g_.cfg.frames))
                             .u32("channels", std::uint32_t(g_.cfg.channels))
                             .u32("base_rule", rule_code(spec_.base_rule))
                             .u32("detail_rule", rule_code(spec_.detail_rule))
@@ -407,7 +408,7 @@ private:
                             .u32("region", r.push)
                             .u32("slot_planes", std::uint32_t(g_.cfg.channels)),
                         Recorder::Work{std::uint32_t(s.bw), groups(std::uint32_t(s.ch), kConvBlock), g_.planes_out()},
-                        taps_);
+                        taps_and_frames_);
     }
 
     void fuse(const PlaneView& coeffs, const PlaneView& out, const LevelShape& s, bool deepest) {
