@@ -38,7 +38,7 @@ layout(push_constant, std430) uniform Push {
 // K, after filter_taps.glsl's constants: the loop over the frames unrolls, and
 // each frame's rule state stays in registers (on lavapipe a value updated in a
 // loop of unknown length lives in memory, under a mask).
-layout(constant_id = 41) const uint FRAMES = 1u;
+layout(constant_id = VKFUSE_FILTER_CONSTANTS) const uint FRAMES = 1u;
 
 void main() {
     int x = int(gl_GlobalInvocationID.x), block = int(gl_GlobalInvocationID.y);

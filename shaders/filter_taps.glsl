@@ -3,6 +3,7 @@
 // rec_hi, each zero-padded to 10 taps), set per wavelet when the plan builds
 // the pipeline. With F known when the pipeline is compiled, the tap loops
 // unroll and every tap is an immediate: no filter loads, no index arithmetic.
+// VKFUSE_FILTER_CONSTANTS (kernel_codes.h) counts them.
 const int MAX_TAPS = 10;
 layout(constant_id = 0) const int F = 2;
 layout(constant_id = 1) const float DL0 = 0.0;

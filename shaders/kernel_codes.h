@@ -26,4 +26,8 @@
 #define VKFUSE_GATHER_WORDS 16   // skip_gather.comp: words per invocation
 #define VKFUSE_SKIP_TILE 32      // change_detect.comp: a skip tile's side (vkfuse::kSkipTile)
 
+// filter_taps.glsl's specialization constants take constant_ids 0 .. 40 (F,
+// then 4 x 10 taps); a kernel's own constants come after them.
+#define VKFUSE_FILTER_CONSTANTS 41
+
 #endif

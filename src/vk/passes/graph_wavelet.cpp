@@ -9,6 +9,7 @@
 // Periodization blocks are 2ch x 2cw (odd sizes padded as pywt does);
 // symmetric blocks are exactly h x w.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <vector>
@@ -112,6 +113,8 @@ double analysis_scale(const core::FilterBank& fb) {
 // filter_taps.glsl's specialization constants: F, then dec_lo, dec_hi,
 // rec_lo, rec_hi (10 taps each), scaled by analysis_scale().
 std::vector<std::uint32_t> filter_specialization(Wavelet w) {
+    using Taps = decltype(core::FilterBank::dec_lo);
+    static_assert(1 + 4 * std::tuple_size_v<Taps> == VKFUSE_FILTER_CONSTANTS, "filter_taps.glsl's constant_ids");
     const auto& fb = core::filter_bank(w);
     const double s = analysis_scale(fb);
     std::vector<std::uint32_t> words{std::uint32_t(fb.length)};
@@ -149,11 +152,9 @@ class WaveletGraph {
 public:
     WaveletGraph(GraphBuilder& g) : g_(g), spec_(g.cfg.fusion) {
         periodization_ = spec_.mode == WaveletMode::Periodization;
-        if (periodization_) {
+        if (periodization_)
             taps_ = filter_specialization(spec_.wavelet);
-            taps_and_frames_ = taps_;
-            taps_and_frames_.push_back(std::uint32_t(g.cfg.frames));  // dwt_fuse_columns.comp's FRAMES
-        } else
+        else
             scheme_ = g.constants(lifting_constants(spec_.wavelet));
         shapes_ = level_shapes(g.cfg);
     }
@@ -228,7 +229,7 @@ private:
     const FusionSpec& spec_;
     bool periodization_ = true;
     VkDeviceAddress scheme_ = 0;  // symmetric mode: the lifting scheme
-    std::vector<std::uint32_t> taps_, taps_and_frames_;
+    std::vector<std::uint32_t> taps_;
     std::vector<LevelShape> shapes_;
 
     int high(int n, int half) const { return periodization_ ? half : n - half; }
@@ -392,6 +393,8 @@ private:
                       int level, bool deepest) {
         const Region r = region(SparsePass::ForwardCols, level, kConvBlock);
         const DeviceSpan src = g_.span(rows.addr);
+        std::vector<std::uint32_t> constants = taps_;  // then the kernel's own: FRAMES
+        constants.push_back(std::uint32_t(g_.cfg.frames));
         g_.rec.dispatch("dwt_fuse_columns", {src, g_.span(coeffs.addr), g_.span(out.addr), r.or_else(src)},
                         PushConstants()
                             .i32("n", s.h)
@@ -408,7 +411,7 @@ private:
                             .u32("region", r.push)
                             .u32("slot_planes", std::uint32_t(g_.cfg.channels)),
                         Recorder::Work{std::uint32_t(s.bw), groups(std::uint32_t(s.ch), kConvBlock), g_.planes_out()},
-                        taps_and_frames_);
+                        constants);
     }
 
     void fuse(const PlaneView& coeffs, const PlaneView& out, const LevelShape& s, bool deepest) {
