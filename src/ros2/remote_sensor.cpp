@@ -166,7 +166,9 @@ std::vector<Frame> RemoteSensor::next_cycle() {
         const bool alive = live ? *live > 0 : alive_;
         if (alive_ && !alive) {
             alive_ = false;
+            // Whoever publishes next, this host again or another, counts its cycles from its own start.
             publication_ = 0;
+            last_cycle_.reset();
             {
                 std::lock_guard lock(counts_mutex_);
                 ++counts_.lost;
