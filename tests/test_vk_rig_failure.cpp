@@ -97,6 +97,32 @@ TEST_F(VulkanRigFailure, AnUnpluggedSensorFailsWhileGoneAndRejoinsWhenBack) {
     EXPECT_FALSE(rig.all_failed());
 }
 
+// With every sensor gone nothing can deliver, but one may come back: each
+// cycle waits out its timeout for that (a fusion host whose capture host
+// went away, a hand whose hub was unplugged) instead of returning at once,
+// over and over, fusing nothing at full speed.
+TEST_F(VulkanRigFailure, EverySensorUnpluggedMakesCyclesWaitRatherThanSpin) {
+    auto only = sim_sensor(1, 0.03);
+    auto cable = std::make_shared<UnpluggableSensor>(only.logged);
+    constexpr double kTimeout = 0.3;
+    Rig rig(&ctx(), two_settings(kTimeout), {{cable, only.clock}});
+    rig.start();
+    ASSERT_EQ(rig.next().sensors[0].status, SensorStatus::Ok);
+    cable->unplug();
+    int gone = 0;
+    for (int c = 0; c < 100 && gone < 4; ++c) {
+        const CycleResult r = rig.next();
+        if (r.sensors[0].status != SensorStatus::Failed) continue;
+        ++gone;
+        EXPECT_GE(r.capture_wait_s, 0.9 * kTimeout) << "cycle " << r.cycle << " of no sensor did not wait";
+    }
+    EXPECT_EQ(gone, 4);
+    cable->replug();
+    bool back = false;
+    for (int c = 0; c < 100 && !back; ++c) back = rig.next().sensors[0].status == SensorStatus::Ok;
+    EXPECT_TRUE(back) << "the replugged sensor never rejoined";
+}
+
 TEST_F(VulkanRigFailure, SensorFailingAtStartupIsReportedEveryCycle) {
     auto good = sim_sensor(1, 0.0), bad = sim_sensor(2, 0.0);
     auto dead = std::make_shared<FaultySensor>(bad.logged, FaultySensor::Fault::Throw, 0);

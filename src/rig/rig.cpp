@@ -162,13 +162,16 @@ PlanConfig Rig::Impl::plan_config(PixelType input, bool metrics) const {
 }
 
 // Every sensor still in step has delivered, and there is something to fuse
-// (or nothing left that could deliver).
+// (or nothing left that could deliver). A lost sensor may deliver again: while
+// every sensor is lost the cycle waits for one to return (or for the cycle
+// timeout) instead of returning at once, cycle after cycle.
 bool Rig::Impl::cycle_ready() const {
     bool any_ready = false, any_alive = false;
     for (std::size_t i = 0; i < hub->slots.size(); ++i) {
         const rig::SensorSlot& slot = hub->slots[i];
-        if (slot.failed || slot.lost) continue;
+        if (slot.failed) continue;
         any_alive = true;
+        if (slot.lost) continue;
         if (!slot.ready.empty())
             any_ready = true;
         else if (!lagging[i] || replayed[i])

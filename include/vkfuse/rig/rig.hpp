@@ -142,7 +142,9 @@ struct CycleResult {
 // not reported as fused. Later cycles do not wait for it until it delivers
 // again, so one stalled sensor costs the others one timeout, once. A sensor
 // that throws is Failed for the rest of the run, with its message (naming its
-// serial) in every later cycle. All sensors must share one frame size.
+// serial) in every later cycle. While every sensor is gone (unplugged or
+// silent, so able to come back) a cycle waits its timeout for one to return.
+// All sensors must share one frame size.
 class Rig {
 public:
     // context null: fuse with the CPU reference path instead of the GPU.
