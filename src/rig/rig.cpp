@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <thread>
 
@@ -80,6 +81,10 @@ struct Rig::Impl {
     // Delivered replayed frames (Frame::recorded_cycle): always waited for,
     // and placed in their recorded cycle.
     std::vector<bool> replayed;
+    // This cycle: sensors whose frames are for a later cycle of their origin
+    // than another sensor's (Frame::origin). Kept for the next cycle, and
+    // waited for like any sensor in step.
+    std::vector<bool> ahead_of_origin;
     std::vector<std::uint8_t> black;
     // Watch cycles: per sensor, its background means rounded to 8 bits (what
     // stands in for the settings a watch cycle did not capture: they score
@@ -140,6 +145,7 @@ Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
     idle_image.assign(sensors.size(), nullptr);
     lagging.assign(sensors.size(), false);
     replayed.assign(sensors.size(), false);
+    ahead_of_origin.assign(sensors.size(), false);
     black.assign(std::size_t(height) * std::size_t(width) * 3, 0);
 }
 
@@ -311,15 +317,32 @@ void Rig::start() {
 void Rig::Impl::take_cycle(CycleResult& result) {
     std::unique_lock lock(hub->mutex);
     hub->changed.wait_until(lock, after(cfg->cycle_timeout_s), [&] { return cycle_ready(); });
+    // Per origin, the earliest of its cycles a sensor has ready.
+    std::map<std::uint64_t, std::uint64_t> earliest;
+    auto origin_of = [&](const rig::SensorSlot& slot) -> const Frame* {
+        if (slot.ready.empty() || slot.ready.front().empty() || slot.ready.front().front().origin == 0) return nullptr;
+        return &slot.ready.front().front();
+    };
+    for (const rig::SensorSlot& slot : hub->slots)
+        if (const Frame* f = origin_of(slot)) {
+            auto [it, fresh] = earliest.emplace(f->origin, f->origin_cycle);
+            if (!fresh) it->second = std::min(it->second, f->origin_cycle);
+        }
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         rig::SensorSlot& slot = hub->slots[i];
         SensorCycle& r = result.sensors[i];
         r.serial = slot.serial;
         if (!slot.ready.empty() && !slot.ready.front().empty() && slot.ready.front().front().recorded_cycle >= 0)
             replayed[i] = true;
+        const Frame* origin = origin_of(slot);
+        ahead_of_origin[i] = origin && origin->origin_cycle > earliest.at(origin->origin);
         if (!slot.ready.empty() && for_a_later_cycle(slot.ready.front(), result.cycle)) {
             r.status = SensorStatus::Timeout;
             r.error = slot.serial + ": no frames recorded for cycle " + std::to_string(result.cycle);
+        } else if (ahead_of_origin[i]) {
+            r.status = SensorStatus::Timeout;
+            r.error = slot.serial + ": no frames of its origin's cycle " + std::to_string(earliest.at(origin->origin)) +
+                      " (its next are of cycle " + std::to_string(origin->origin_cycle) + ")";
         } else if (!slot.ready.empty()) {
             r.frames = std::move(slot.ready.front());
             slot.ready.pop_front();
@@ -348,7 +371,7 @@ CycleResult Rig::Impl::start_cycle() {
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         const bool ok = result.sensors[i].status == SensorStatus::Ok;
         if (ok && engine) last_good[i] = result.sensors[i].frames;  // what a late sensor's slot is fused from
-        lagging[i] = !ok && !replayed[i];
+        lagging[i] = !ok && !replayed[i] && !ahead_of_origin[i];
     }
     if (engine) engine->submit(views_for(result.sensors));
     result.fuse_s = seconds_since(fuse_start);

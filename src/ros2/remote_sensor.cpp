@@ -75,6 +75,16 @@ void RemoteSensor::problem(const std::string& what) {
     say_now_and_then(what + " (" + topic_ + "; refused)");
 }
 
+// Its capture host: the participant that publishes it, which numbers the
+// cycles of all that host's sensors (0 where DDS cannot say).
+std::uint64_t RemoteSensor::participant_of(dds_instance_handle_t publication) const {
+    dds_builtintopic_endpoint_t* endpoint = dds_get_matched_publication_data(cycles_.get(), publication);
+    if (!endpoint) return 0;
+    const std::uint64_t participant = endpoint->participant_instance_handle;
+    dds_builtintopic_free_endpoint(endpoint);
+    return participant;
+}
+
 std::optional<std::int32_t> RemoteSensor::live_publishers() const {
     dds_liveliness_changed_status_t status{};
     if (dds_get_liveliness_changed_status(cycles_.get(), &status) != DDS_RETCODE_OK) return std::nullopt;
@@ -151,6 +161,14 @@ std::optional<std::vector<Frame>> RemoteSensor::take_cycle() {
                          std::to_string(msg.cycle) + " never arrived whole (" + topic_ + "/cycle)");
     }
     last_cycle_ = msg.cycle;
+    if (from != origin_of_) {
+        origin_of_ = from;
+        origin_ = participant_of(from);
+    }
+    for (Frame& f : frames) {
+        f.origin = origin_;
+        f.origin_cycle = msg.cycle;
+    }
     const builtin_interfaces_msg_dds__Time_& stamp = msg.frames._buffer[0].image.header.stamp;
     clock_->observe(frames.front().timestamp, double(stamp.sec) + double(stamp.nanosec) * 1e-9);
     std::lock_guard lock(counts_mutex_);

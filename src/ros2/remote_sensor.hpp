@@ -55,6 +55,7 @@ private:
     std::vector<Frame> next_cycle();
     // A sound cycle from the reader's next sample, or nothing (counted).
     std::optional<std::vector<Frame>> take_cycle();
+    std::uint64_t participant_of(dds_instance_handle_t publication) const;
     // Publishers of the cycle topic alive now (nullopt where DDS cannot say).
     std::optional<std::int32_t> live_publishers() const;
     // "<serial>: <what>", unless a line went out less than a second ago.
@@ -77,6 +78,9 @@ private:
     std::vector<Frame> cycle_;  // the cycle being handed out
     std::size_t position_ = 0;
     dds_instance_handle_t publication_ = 0;  // whose cycles we follow
+    // Frame::origin of its cycles: the participant of publication origin_of_.
+    dds_instance_handle_t origin_of_ = 0;
+    std::uint64_t origin_ = 0;
     std::optional<std::uint64_t> last_cycle_;
     bool alive_ = false;
     bool away_ = false;  // said gone, not yet back

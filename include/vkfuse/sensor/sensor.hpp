@@ -33,6 +33,14 @@ struct Frame {
     // A replayed frame: the rig cycle it was fused in when recorded (a Rig
     // then places it in that very cycle); -1 for a live frame.
     std::int64_t recorded_cycle = -1;
+    // A frame another host's rig took: which rig (a number all its sensors'
+    // frames share; 0 for none) and the cycle it took it in. A Rig keeps the
+    // sensors of one origin in step: a sensor whose next frames are for a
+    // later cycle than another's (its cycle was lost on the way) sits the
+    // earlier cycle out rather than be fused beside it, and the others do not
+    // fall a cycle behind for good.
+    std::uint64_t origin = 0;
+    std::uint64_t origin_cycle = 0;
 
     FrameView view() const { return {pixels.data(), height, width, 3, PixelType::U8}; }
 };
