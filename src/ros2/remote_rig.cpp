@@ -17,12 +17,22 @@ using Clock = std::chrono::steady_clock;
 // Capture hosts whose descriptions the reader keeps until they are taken.
 constexpr int kDescriptionDepth = 16;
 
-// This process's domain, created with DDS's bound on a sample's size unless
-// something here joined it first; whatever CYCLONEDDS_URI configures
-// (the network interface, say) still applies.
+// A cycle of a rig arrives as one burst of datagrams (16 QVGA sensors, 2
+// settings: 7.4 MB), faster than a busy receive thread drains them; what
+// overflows the socket's buffer is lost and repaired a heartbeat later, and
+// the cycle waits for it. So the sockets ask for a buffer of several cycles,
+// taking what the kernel grants (net.core.rmem_max caps it: README, "Rigs
+// across machines").
+constexpr const char* kReceiveBuffer = "<Internal><SocketReceiveBufferSize max=\"64MB\"/></Internal>";
+
+// This process's domain, created with DDS's bound on a sample's size and a
+// large receive buffer unless something here joined it first; whatever
+// CYCLONEDDS_URI configures (the network interface, the buffer) still
+// applies, except the bound.
 DdsEntity bounded_domain(int domain) {
     const char* uri = std::getenv("CYCLONEDDS_URI");
-    const std::string config = (uri && *uri ? std::string(uri) + "," : std::string()) +
+    const std::string config = std::string(kReceiveBuffer) + "," +
+                               (uri && *uri ? std::string(uri) + "," : std::string()) +
                                "<Internal><MaxSampleSize>" + std::to_string(kMaxSampleBytes) +
                                "B</MaxSampleSize></Internal>";
     const dds_entity_t d = dds_create_domain(dds_domainid_t(domain), config.c_str());
