@@ -4,10 +4,14 @@
 #include <png.h>
 #include <zlib.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 
 #include "expect_error.hpp"
+#include "io/png.hpp"
 #include "temp_dir.hpp"
 #include "test_support.hpp"
 #include "vkfuse/core/error.hpp"
@@ -265,3 +269,36 @@ TEST(PngRead, RandomDamageNeverCrashes) {
 
 }  // namespace
 }  // namespace vkfuse::test
+
+namespace vkfuse::io {
+namespace {
+
+// to_8bit rounds as the 8-bit PNG writers and publishers promise:
+// lround(clamp(v, 0, 1) * 255), halves away from zero, checked against that
+// formula on every float whose scaled value lies within 1e-3 of a half step,
+// and on the values outside [0, 1].
+TEST(PngWrite, EightBitRoundingIsLroundOfTheClampedValueForEveryNearHalfFloat) {
+    std::vector<float> values{-1.0f, -0.0f, 0.0f, 1.0f, 2.0f, std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::denorm_min()};
+    for (int k = 0; k < 255; ++k) {
+        // The floats v with v * 255 in [k + 0.499, k + 0.501].
+        float v = float((k + 0.499) / 255.0);
+        const float end = float((k + 0.501) / 255.0);
+        for (; v <= end; v = std::nextafter(v, 2.0f)) values.push_back(v);
+    }
+    Image image(1, int(values.size()), 1);
+    image.data = values;
+    const std::vector<unsigned char> got = to_8bit(image);
+    std::size_t wrong = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const auto want = static_cast<unsigned char>(std::lround(std::clamp(values[i], 0.0f, 1.0f) * 255.0));
+        if (got[i] != want && ++wrong <= 5) ADD_FAILURE() << values[i] << ": " << int(got[i]) << ", want " << int(want);
+    }
+    EXPECT_EQ(wrong, 0u) << "of " << values.size();
+    image.data = {std::numeric_limits<float>::quiet_NaN()};
+    image.width = 1;
+    EXPECT_EQ(to_8bit(image).front(), 0) << "NaN";
+}
+
+}  // namespace
+}  // namespace vkfuse::io
