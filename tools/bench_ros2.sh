@@ -80,18 +80,45 @@ steady_cpu() {
     awk -v a="$after" -v b="$before" 'BEGIN { printf "%.2f", a - b }'
 }
 
-# The baseline: one process, no DDS.
+# The subscriber's window on B's fused images: from the first image it hears
+# to 2 s after A's last cycle; ages also without the first SETTLE s.
+SETTLE=2
+TAIL=2
+# Starts the subscriber (in namespace $1, or here when it is "-") and waits
+# until it is matched to all 16 sensors' fused topics; sets PROBE_PID.
+start_probe() {
+    local ns=()
+    [ "$1" = - ] || ns=(ip netns exec "$1")
+    # A ROS 2 subscriber of large images is given a large receive buffer
+    # too, as ROS 2's documentation advises for Cyclone DDS.
+    CYCLONEDDS_URI="<Internal><SocketReceiveBufferSize max=\"64MB\"/></Internal>${CYCLONEDDS_URI:+,$CYCLONEDDS_URI}" \
+        VKFUSE_PROBE_TRACE="$WORK/probe-$2.trace" "${ns[@]}" "$PROBE" --ros-domain $DOMAIN --sensors 16 \
+        --seconds $(( CYCLES / 15 + TAIL )) --settle $SETTLE >"$WORK/probe-$2.json" 2>"$WORK/probe-$2.err" &
+    PROBE_PID=$!
+    await "$WORK/probe-$2.err" ready 120 || echo "bench_ros2: the subscriber heard of no 16 sensors" >&2
+}
+
+# The baselines: one process, no DDS; one process publishing, with the
+# subscriber beside it (what fusing and publishing alone add to the age).
 start_run local - run --replay "$DATA" --realtime
 local_cpu=$(steady_cpu $RUN_PID local)
 echo "local (one process): $(fps "$WORK/local.json") fused fps per sensor; CPU from the first cycle $local_cpu s"
-
-# The last "cycle N/" a run's progress line showed.
-cycles_of() { tr '\r' '\n' <"$1" | sed -n 's/^vkfuse run: cycle \([0-9][0-9]*\).*/\1/p' | tail -1; }
+start_run local-publish - run --replay "$DATA" --realtime --publish ros2 --ros-domain $DOMAIN
+local_publish=$RUN_PID
+start_probe - local
+local_publish_cpu=$(steady_cpu $local_publish local-publish)
+wait $PROBE_PID || true
+echo "local publishing: CPU from the first cycle $local_publish_cpu s; subscriber beside it: $(cat "$WORK/probe-local.json")"
 
 # B fuses (publishing or not) what A plays. A plays the recording twice: the
 # first time B starts (takes the background, builds its plans) and falls
 # behind; the second, B is a fusion host already running when its capture
-# host starts, and that is what is measured, from A's first cycle to its last.
+# host starts, and that is what is measured: B's CPU from A's first cycle to
+# TAIL s after A's last (what B still had queued), and, when B publishes, a
+# subscriber on B that is matched to all 16 sensors' fused topics before A
+# starts and hears every image stamped after that.
+# Datagrams dropped in B's namespace so far because a socket's buffer was full.
+rcvbuf_errors() { ip netns exec $B awk '/^Udp:/ { n++ } /^Udp:/ && n == 2 { print $6 }' /proc/net/snmp; }
 distributed() {
     local tag=$1; shift
     start_run "$tag-b" $B run --source ros2 --ros-domain $DOMAIN --timeout 2 --startup-timeout 300 "$@"
@@ -99,32 +126,59 @@ distributed() {
     start_run "$tag-a1" $A run --replay "$DATA" --realtime --capture-only --publish ros2 --publish-frames \
         --ros-domain $DOMAIN --publish-wait 120
     wait $RUN_PID || true
+    local probe=""
+    if [ "$tag" = publish ]; then
+        start_probe $B two-hosts
+        probe=$PROBE_PID
+    fi
     start_run "$tag-a" $A run --replay "$DATA" --realtime --capture-only --publish ros2 --publish-frames \
         --ros-domain $DOMAIN
     local a=$RUN_PID
     await "$WORK/$tag-a.err" "cycle 1/" 600 || true
-    local probe=""
-    if [ "$tag" = publish ]; then
-        ip netns exec $B "$PROBE" --ros-domain $DOMAIN --seconds 8 >"$WORK/probe.json" &
-        probe=$!
-    fi
-    local b_before b_cycles_before a_cpu b_after start_s end_s
+    local b_before a_cpu b_after start_s end_s drops_before
+    drops_before=$(rcvbuf_errors)
     b_before=$(cpu_of $b)
-    b_cycles_before=$(cycles_of "$WORK/$tag-b.err")
-    b_cycles_before=${b_cycles_before:-0}
     start_s=$(date +%s.%N)
     a_cpu=$(steady_cpu $a "$tag-a")
+    sleep $TAIL
     end_s=$(date +%s.%N)
     b_after=$(cpu_of $b)
-    local b_cycles
-    b_cycles=$(cycles_of "$WORK/$tag-b.err")
     kill -TERM $b 2>/dev/null || true
     wait $b || true
-    [ -z "$probe" ] || wait $probe
-    echo "two hosts, B $tag: CPU while A played: A $a_cpu s, B $(awk -v a="$b_after" -v b="$b_before" \
-        'BEGIN { printf "%.2f", a - b }') s over $(awk -v s="$start_s" -v e="$end_s" 'BEGIN { printf "%.1f", e - s }') s" \
-        "(B's rig cycles: $(( ${b_cycles:-0} - b_cycles_before )), late sensors included)"
+    [ -z "$probe" ] || wait $probe || true
+    B_CPU=$(awk -v a="$b_after" -v b="$b_before" 'BEGIN { printf "%.2f", a - b }')
+    local drops=$(( $(rcvbuf_errors) - drops_before ))
+    echo "two hosts, B $tag: CPU from A's first cycle to ${TAIL} s after its last: A $a_cpu s, B $B_CPU s" \
+        "over $(awk -v s="$start_s" -v e="$end_s" 'BEGIN { printf "%.1f", e - s }') s;" \
+        "datagrams B's full socket buffers dropped: $drops"
 }
-distributed quiet
-distributed publish --publish ros2
-echo "subscriber on B (fused images of B publishing, 8 s from A's first cycle): $(cat "$WORK/probe.json")"
+# Alternate rounds (ROUNDS, default 3) of B quiet and B publishing: this
+# host's CPU times vary from run to run by more than publishing costs.
+: >"$WORK/rounds.txt"
+for round in $(seq "${ROUNDS:-3}"); do
+    distributed quiet
+    quiet_cpu=$B_CPU
+    distributed publish --publish ros2
+    echo "$quiet_cpu $B_CPU $(cat "$WORK/probe-two-hosts.json")" >>"$WORK/rounds.txt"
+    echo "round $round: publishing costs B $(awk -v p="$B_CPU" -v q="$quiet_cpu" \
+        'BEGIN { printf "%+.1f", 100 * (p - q) / q }') % CPU; subscriber on B: $(cat "$WORK/probe-two-hosts.json")"
+done
+# Over the rounds: the median of each figure, and the worst.
+python3 - "$WORK/rounds.txt" <<'PY'
+import json, statistics, sys
+rounds = []
+for line in open(sys.argv[1]):
+    quiet, publish, probe = line.split(" ", 2)
+    rounds.append((float(quiet), float(publish), json.loads(probe)))
+cost = [100 * (p - q) / q for q, p, _ in rounds]
+fewest = [min(s["images"] for s in r["sensors"].values()) if r["sensors_heard"] else 0 for _, _, r in rounds]
+def figure(name, values, unit):
+    print(f"{name}: median {statistics.median(values):.1f}{unit}, rounds " + ", ".join(f"{v:.1f}" for v in values))
+figure("publishing costs B (CPU over B quiet)", cost, " %")
+figure("slowest sensor's fused images per s at the subscriber", [r["slowest_fps"] for _, _, r in rounds], "")
+figure("fewest fused images of one sensor (of its cycles played)", fewest, "")
+for key in ("age_ms", "age_ms_settled"):
+    for q in ("p50", "p99"):
+        figure(f"capture to subscriber, {q} in ms ({'all images' if key == 'age_ms' else 'after the first %g s' % rounds[0][2]['settle_s']})",
+               [r[key][q] for _, _, r in rounds], "")
+PY
