@@ -78,13 +78,13 @@ struct Rig::Impl {
     std::unique_ptr<rig::Engine> bg_engine;  // fuses background means the way frames are fused
     std::vector<std::vector<Frame>> last_good;
     std::vector<bool> lagging;  // timed out and not delivered since: not waited for
-    // Delivered replayed frames (Frame::recorded_cycle): always waited for,
-    // and placed in their recorded cycle.
-    std::vector<bool> replayed;
-    // This cycle: sensors whose frames are for a later cycle of their origin
-    // than another sensor's (Frame::origin). Kept for the next cycle, and
-    // waited for like any sensor in step.
-    std::vector<bool> ahead_of_origin;
+    // Delivered numbered cycles: a recording's (Frame::recorded_cycle), placed
+    // in their recorded cycle, or another host's rig's (Frame::origin), fused
+    // in step with that rig's other sensors. Always waited for while not
+    // lost: a numbered cycle that never comes shows when the sensor's next
+    // one is for a later cycle, so no timeout is needed to go on without it,
+    // and a sensor that sat one out is not left behind the others.
+    std::vector<bool> numbered;
     std::vector<std::uint8_t> black;
     // Watch cycles: per sensor, its background means rounded to 8 bits (what
     // stands in for the settings a watch cycle did not capture: they score
@@ -144,8 +144,7 @@ Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
     idle_metrics.resize(sensors.size());
     idle_image.assign(sensors.size(), nullptr);
     lagging.assign(sensors.size(), false);
-    replayed.assign(sensors.size(), false);
-    ahead_of_origin.assign(sensors.size(), false);
+    numbered.assign(sensors.size(), false);
     black.assign(std::size_t(height) * std::size_t(width) * 3, 0);
 }
 
@@ -180,7 +179,7 @@ bool Rig::Impl::cycle_ready() const {
         if (slot.lost) continue;
         if (!slot.ready.empty())
             any_ready = true;
-        else if (!lagging[i] || replayed[i])
+        else if (!lagging[i] || numbered[i])
             return false;
     }
     return any_ready || !any_alive;
@@ -332,14 +331,15 @@ void Rig::Impl::take_cycle(CycleResult& result) {
         rig::SensorSlot& slot = hub->slots[i];
         SensorCycle& r = result.sensors[i];
         r.serial = slot.serial;
-        if (!slot.ready.empty() && !slot.ready.front().empty() && slot.ready.front().front().recorded_cycle >= 0)
-            replayed[i] = true;
         const Frame* origin = origin_of(slot);
-        ahead_of_origin[i] = origin && origin->origin_cycle > earliest.at(origin->origin);
+        if (!slot.ready.empty() && !slot.ready.front().empty() && (slot.ready.front().front().recorded_cycle >= 0 || origin))
+            numbered[i] = true;
+        // Frames for a later cycle of their origin than another sensor's: kept for the next cycle.
+        const bool ahead_of_origin = origin && origin->origin_cycle > earliest.at(origin->origin);
         if (!slot.ready.empty() && for_a_later_cycle(slot.ready.front(), result.cycle)) {
             r.status = SensorStatus::Timeout;
             r.error = slot.serial + ": no frames recorded for cycle " + std::to_string(result.cycle);
-        } else if (ahead_of_origin[i]) {
+        } else if (ahead_of_origin) {
             r.status = SensorStatus::Timeout;
             r.error = slot.serial + ": no frames of its origin's cycle " + std::to_string(earliest.at(origin->origin)) +
                       " (its next are of cycle " + std::to_string(origin->origin_cycle) + ")";
@@ -371,7 +371,7 @@ CycleResult Rig::Impl::start_cycle() {
     for (std::size_t i = 0; i < sensors.size(); ++i) {
         const bool ok = result.sensors[i].status == SensorStatus::Ok;
         if (ok && engine) last_good[i] = result.sensors[i].frames;  // what a late sensor's slot is fused from
-        lagging[i] = !ok && !replayed[i] && !ahead_of_origin[i];
+        lagging[i] = !ok && !numbered[i];
     }
     if (engine) engine->submit(views_for(result.sensors));
     result.fuse_s = seconds_since(fuse_start);
