@@ -59,6 +59,11 @@ void check_config(const RigConfig& cfg, const std::vector<RigSensor>& sensors, c
                                                 "its references and held results once, for 1 cycle in flight)");
 }
 
+// The first frame of the oldest cycle in a sensor's mailbox, if any.
+const Frame* first_ready_frame(const rig::SensorSlot& slot) {
+    return slot.ready.empty() || slot.ready.front().empty() ? nullptr : &slot.ready.front().front();
+}
+
 // Replayed frames recorded for a later cycle than the one being assembled:
 // the sensor missed this cycle when recorded, so it misses it again.
 bool for_a_later_cycle(const std::vector<Frame>& frames, std::uint64_t cycle) {
@@ -318,9 +323,9 @@ void Rig::Impl::take_cycle(CycleResult& result) {
     hub->changed.wait_until(lock, after(cfg->cycle_timeout_s), [&] { return cycle_ready(); });
     // Per origin, the earliest of its cycles a sensor has ready.
     std::map<std::uint64_t, std::uint64_t> earliest;
-    auto origin_of = [&](const rig::SensorSlot& slot) -> const Frame* {
-        if (slot.ready.empty() || slot.ready.front().empty() || slot.ready.front().front().origin == 0) return nullptr;
-        return &slot.ready.front().front();
+    auto origin_of = [](const rig::SensorSlot& slot) -> const Frame* {
+        const Frame* f = first_ready_frame(slot);
+        return f && f->origin != 0 ? f : nullptr;
     };
     for (const rig::SensorSlot& slot : hub->slots)
         if (const Frame* f = origin_of(slot)) {
@@ -332,8 +337,7 @@ void Rig::Impl::take_cycle(CycleResult& result) {
         SensorCycle& r = result.sensors[i];
         r.serial = slot.serial;
         const Frame* origin = origin_of(slot);
-        if (!slot.ready.empty() && !slot.ready.front().empty() && (slot.ready.front().front().recorded_cycle >= 0 || origin))
-            numbered[i] = true;
+        if (const Frame* f = first_ready_frame(slot); f && (f->recorded_cycle >= 0 || origin)) numbered[i] = true;
         // Frames for a later cycle of their origin than another sensor's: kept for the next cycle.
         const bool ahead_of_origin = origin && origin->origin_cycle > earliest.at(origin->origin);
         if (!slot.ready.empty() && for_a_later_cycle(slot.ready.front(), result.cycle)) {
