@@ -145,6 +145,7 @@ std::optional<std::vector<Frame>> RemoteSensor::take_cycle() {
         problem(p);
         return std::nullopt;
     }
+    if (from != publication_) origin_ = participant_of(from);
     publication_ = from;
     if (last_cycle_ && msg.cycle <= *last_cycle_) {
         problem("cycle " + std::to_string(msg.cycle) + " after cycle " + std::to_string(*last_cycle_) +
@@ -161,10 +162,6 @@ std::optional<std::vector<Frame>> RemoteSensor::take_cycle() {
                          std::to_string(msg.cycle) + " never arrived whole (" + topic_ + "/cycle)");
     }
     last_cycle_ = msg.cycle;
-    if (from != origin_of_) {
-        origin_of_ = from;
-        origin_ = participant_of(from);
-    }
     for (Frame& f : frames) {
         f.origin = origin_;
         f.origin_cycle = msg.cycle;

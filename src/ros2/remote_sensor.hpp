@@ -78,9 +78,7 @@ private:
     std::vector<Frame> cycle_;  // the cycle being handed out
     std::size_t position_ = 0;
     dds_instance_handle_t publication_ = 0;  // whose cycles we follow
-    // Frame::origin of its cycles: the participant of publication origin_of_.
-    dds_instance_handle_t origin_of_ = 0;
-    std::uint64_t origin_ = 0;
+    std::uint64_t origin_ = 0;  // Frame::origin of its cycles: publication_'s participant
     std::optional<std::uint64_t> last_cycle_;
     bool alive_ = false;
     bool away_ = false;  // said gone, not yet back
