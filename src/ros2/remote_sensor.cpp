@@ -52,7 +52,7 @@ RemoteSensor::RemoteSensor(std::shared_ptr<RemoteDomain> domain, SensorContract 
       background_(make_reader(domain_->participant, vkfuse_msgs_msg_dds__Background__desc, topic_ + "/background",
                               TopicQos::reader(1))),
       cycle_arrived_(domain_->participant, cycles_),
-      background_arrived_(domain_->participant, background_),
+      background_arrived_(std::in_place, domain_->participant, background_),
       background_done_(contract_.background_frames == 0) {}
 
 RemoteCounts RemoteSensor::counts() const {
@@ -109,7 +109,7 @@ Frame RemoteSensor::next_background_frame() {
                 throw Error(ErrorKind::Timeout, contract_.info.serial + ": no background from its capture host within " +
                                                     seconds_text(startup_timeout_s_) + " (" + topic_ +
                                                     "/background)");
-            background_arrived_.wait(kSlice);
+            background_arrived_->wait(kSlice);
         }
         background_served_.assign(background_frames_.size(), 0);
     }
@@ -212,7 +212,14 @@ std::vector<Frame> RemoteSensor::next_cycle() {
 
 Frame RemoteSensor::grab() {
     if (!background_done_) return next_background_frame();
-    if (!background_frames_.empty()) background_frames_ = {};
+    if (background_arrived_) {
+        // The background is taken once (as a replugged DIGIT's): the reader
+        // goes, so a capture host that restarts sends its latched
+        // background, megabytes a sensor, to no one here.
+        background_frames_ = {};
+        background_arrived_.reset();
+        background_ = {};
+    }
     if (position_ == 0) cycle_ = next_cycle();
     const std::size_t k = position_;
     position_ = (position_ + 1) % cycle_.size();

@@ -69,7 +69,8 @@ private:
     std::string topic_;  // /vkfuse/<token>
     double startup_timeout_s_;
     DdsEntity cycles_, background_;
-    DataWait cycle_arrived_, background_arrived_;
+    DataWait cycle_arrived_;
+    std::optional<DataWait> background_arrived_;  // until the background is taken
     Illumination requested_;
     // The background, by setting, until every frame of it was handed out.
     std::vector<std::pair<Illumination, std::vector<Frame>>> background_frames_;

@@ -3,7 +3,8 @@
 // sensor and then sends it every kind of bad sample among good ones. The
 // remote sensor hands out only the good cycles, whole and in order, counts
 // each bad one, says so in a line, and never crashes; a background that
-// never comes ends the sensor's start with one line.
+// never comes ends the sensor's start with one line; one taken is not
+// listened for again.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -206,6 +207,43 @@ TEST(Ros2Hostile, BadSamplesAreRefusedCountedAndNeverHandedOut) {
     std::lock_guard lock(lines_mutex);
     ASSERT_FALSE(lines.empty());
     EXPECT_EQ(lines.front().rfind(kSerial + ": ", 0), 0u) << lines.front();
+}
+
+// A fusion host takes a sensor's background once. Its reader goes with the
+// background, so a capture host that restarts (and latches its background
+// again, megabytes a sensor) sends it to no one on this host.
+TEST(Ros2Hostile, TheBackgroundIsReadOnceAndItsReaderThenGoes) {
+    const int domain = own_domain();
+    TestPublisher host(domain);
+    host.describe();
+    host.send_background();
+    RemoteRigOptions options;
+    options.domain = domain;
+    options.serials = {kSerial};
+    options.startup_timeout_s = 30;
+    options.report = [](const std::string&) {};
+    RemoteRig rig(options);
+    Sensor& sensor = *rig.sensors().front().sensor;
+    auto readers_of_background = [&] {
+        dds_publication_matched_status_t status{};
+        EXPECT_EQ(dds_get_publication_matched_status(host.background.get(), &status), DDS_RETCODE_OK);
+        return status.current_count;
+    };
+    for (const Illumination& setting : kSequence)
+        for (int j = 0; j < 2; ++j) {
+            sensor.set_illumination(setting);
+            sensor.grab();
+        }
+    EXPECT_EQ(readers_of_background(), 1u);  // the sensor's, until its first cycle
+    host.send_cycle(0, cycle_frames(0));
+    EXPECT_EQ(grab_cycle(sensor).size(), 2u);
+    // Unmatching travels through discovery: a busy host takes a moment.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (readers_of_background() != 0 && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_EQ(readers_of_background(), 0u);
+    host.send_cycle(1, cycle_frames(1));
+    EXPECT_EQ(grab_cycle(sensor).front().pixels, cycle_frames(1).front().pixels);  // cycles still come
 }
 
 TEST(Ros2Hostile, ABackgroundThatNeverComesEndsTheStartWithOneLine) {
