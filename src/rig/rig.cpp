@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/deadline.hpp"
+#include "io/png.hpp"
 #include "rig/engine.hpp"
 #include "rig/hub.hpp"
 #include "vkfuse/core/error.hpp"
@@ -139,8 +140,13 @@ Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
         const Image zero(height, width, 3);  // until a sensor's own background is in
         const SkipReference black{std::vector<Image>(cfg->sequence.size(), zero),
                                   std::vector<Image>(cfg->sequence.size(), zero)};
+        // The backgrounds' plan fuses these black means once now: a driver
+        // that compiles its shaders at their first dispatch does so here,
+        // not while the first cycles wait for the real backgrounds.
+        bg_engine = rig::make_engine(context, plan_config(PixelType::F32, false));
+        bg_engine->run(std::vector<FrameView>(sensors.size() * cfg->sequence.size(), FrameView::of(zero)));
         for (std::size_t i = 0; i < sensors.size(); ++i) {
-            engine->set_background(int(i), zero);
+            engine->set_background(int(i), bg_engine->fused(int(i)));
             if (cfg->skip.policy != SkipPolicy::Off) engine->set_skip_reference(int(i), black);
         }
     }
@@ -207,7 +213,6 @@ void Rig::Impl::apply_new_backgrounds() {
         }
     }
     if (!any || !engine) return;
-    if (!bg_engine) bg_engine = rig::make_engine(context, plan_config(PixelType::F32, false));
     const Image zero(height, width, 3);
     std::vector<FrameView> views;
     for (const auto& means : fresh)
@@ -220,12 +225,7 @@ void Rig::Impl::apply_new_backgrounds() {
         if (cfg->skip.policy == SkipPolicy::Off) continue;
         engine->set_skip_reference(int(i), SkipReference{fresh[i], deviations[i]});
         fill[i].clear();
-        for (const Image& mean : fresh[i]) {
-            std::vector<std::uint8_t> level(mean.size());
-            for (std::size_t j = 0; j < level.size(); ++j)
-                level[j] = std::uint8_t(std::clamp(std::lround(double(mean.data[j]) * 255.0), 0l, 255l));
-            fill[i].push_back(std::move(level));
-        }
+        for (const Image& mean : fresh[i]) fill[i].push_back(io::to_8bit(mean));
         idle_metrics[i].reset();
         idle_image[i] = nullptr;
         std::lock_guard lock(hub->mutex);
