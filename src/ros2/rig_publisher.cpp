@@ -134,11 +134,12 @@ struct RigPublisher::Impl {
     }
 
     void publish_cycle(std::size_t i, std::uint64_t cycle, const SensorCycle& s,
-                       const std::vector<builtin_interfaces_msg_dds__Time_>& frame_stamps) {
+                       const std::vector<builtin_interfaces_msg_dds__Time_>& frame_stamps,
+                       const builtin_interfaces_msg_dds__Time_& stamp) {
         LitFrames frames(s.serial);
         for (std::size_t k = 0; k < s.frames.size(); ++k) frames.add(s.frames[k], frame_stamps[k], settings.messages.at(k));
         vkfuse_msgs_msg_dds__LitCycle_ msg{};
-        msg.header = {frame_stamps.front(), text(s.serial)};
+        msg.header = {stamp, text(s.serial)};
         msg.serial = text(s.serial);
         msg.cycle = cycle;
         msg.frames = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LitFrame_>(frames.messages);
@@ -334,14 +335,14 @@ void RigPublisher::publish(const CycleResult& cycle) {
         const SensorCycle& s = cycle.sensors[i];
         const bool ok = s.status == SensorStatus::Ok && !s.frames.empty();
         const auto frame_stamps = ok ? im.stamps(i, s.frames) : std::vector<builtin_interfaces_msg_dds__Time_>{};
-        const auto stamp = ok ? frame_stamps.front() : stamp_of(std::chrono::system_clock::now());
+        const auto stamp = ok ? im.stamp(i, s.newest_timestamp()) : stamp_of(std::chrono::system_clock::now());
         if (!im.fused.empty()) {
             if (ok && s.fused) im.publish_fused(i, s, stamp);
             im.publish_metrics(i, cycle.cycle, s, stamp);
         }
         // A watch cycle (one setting) is no cycle a fusion host could fuse.
         if (!im.cycles.empty() && ok && s.frames.size() == im.rig.sequence.size())
-            im.publish_cycle(i, cycle.cycle, s, frame_stamps);
+            im.publish_cycle(i, cycle.cycle, s, frame_stamps, stamp);
     }
     const auto now = std::chrono::steady_clock::now();
     if (!im.diagnosed || now - *im.diagnosed >= kDiagnosticsPeriod) {

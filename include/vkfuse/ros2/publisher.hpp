@@ -113,7 +113,9 @@ public:
     // One cycle: each sensor's metrics, its fused image where the cycle has
     // one, its frames (options.frames) where it delivered; /diagnostics when
     // a second passed since it was last sent. header.stamp: the capture time
-    // of the sensor's first frame (now, where it delivered none).
+    // of the sensor's newest frame, when the cycle was complete, as
+    // SensorCycle::newest_timestamp() and metrics.jsonl date it (now, where
+    // it delivered none).
     void publish(const CycleResult& cycle);
 
     // With options.frames: one setting's background frames of a sensor (as
