@@ -6,6 +6,7 @@
 
 #include "io/file_bytes.hpp"
 #include "io/path_component.hpp"
+#include "io/png.hpp"
 #include "sensor/dataset_manifest.hpp"
 #include "sensor/dataset_mcap.hpp"
 #include "vkfuse/core/error.hpp"
@@ -81,10 +82,8 @@ Frame load_frame(const Dataset& dataset, const DatasetSensorRecord& sensor, cons
     f.width = image.width;
     f.illumination = frame.illumination;
     f.recorded_cycle = frame.cycle;
-    f.pixels.resize(image.data.size());
     // v / 255 read back from an 8-bit PNG: rounding restores the byte exactly.
-    std::transform(image.data.begin(), image.data.end(), f.pixels.begin(),
-                   [](float v) { return std::uint8_t(std::lround(double(v) * 255.0)); });
+    f.pixels = io::to_8bit(image);
     return f;
 }
 
