@@ -1,7 +1,10 @@
 #include "ros2/dds_entities.hpp"
 
+#include <cstdlib>
+
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/ros2/publisher.hpp"
+#include "vkfuse/ros2/remote.hpp"
 
 namespace vkfuse::ros2 {
 
@@ -9,6 +12,18 @@ void check_domain(int domain) {
     if (domain < 0 || domain > kMaxDomain)
         throw Error(ErrorKind::InvalidArgument,
                     "ROS domain " + std::to_string(domain) + ": expected 0.." + std::to_string(kMaxDomain));
+}
+
+DdsEntity configured_domain(int domain) {
+    check_domain(domain);
+    const char* uri = std::getenv("CYCLONEDDS_URI");
+    const std::string config = "<General><MaxMessageSize>65500B</MaxMessageSize></General>"
+                               "<Internal><SocketReceiveBufferSize max=\"64MB\"/></Internal>," +
+                               (uri && *uri ? std::string(uri) + "," : std::string()) +
+                               "<Internal><MaxSampleSize>" + std::to_string(kMaxSampleBytes) +
+                               "B</MaxSampleSize></Internal>";
+    const dds_entity_t d = dds_create_domain(dds_domainid_t(domain), config.c_str());
+    return d > 0 ? DdsEntity(d, "DDS domain") : DdsEntity();
 }
 
 DdsEntity make_participant(int domain) {

@@ -27,6 +27,25 @@ private:
     dds_entity_t entity_ = 0;
 };
 
+// This process's DDS domain `domain`, made with vkfuse's settings unless
+// something in the process made it first (then an empty entity: the
+// domain lives as long as its maker). Deleting it deletes every participant
+// in it, so it goes after them. Settings:
+// - datagrams of up to 64 KB, where Cyclone sends 14.7 KB: a QVGA image is 4
+//   datagrams rather than 16, and the sender's kernel work is mostly per
+//   datagram (docs/measurements.md). A link that loses packets loses a whole
+//   datagram with any of its IP fragments: there CYCLONEDDS_URI sets
+//   <General><MaxMessageSize>14720B</MaxMessageSize></General> back (README,
+//   "Lossy links");
+// - receive buffers of 64 MB asked for: a cycle of a rig arrives as one
+//   burst of datagrams (16 QVGA sensors, 2 settings: 7.4 MB), faster than a
+//   busy receive thread drains them, and what overflows is repaired only a
+//   heartbeat later while the cycle waits (the kernel grants at most twice
+//   net.core.rmem_max: README, "Receive buffers");
+// - then whatever CYCLONEDDS_URI configures (the interface, these two);
+// - last, samples over kMaxSampleBytes refused, which nothing overrides.
+DdsEntity configured_domain(int domain);
+
 // Throws Error(InvalidArgument) "ROS domain N: expected 0..232" for a
 // domain outside the RTPS port range.
 void check_domain(int domain);

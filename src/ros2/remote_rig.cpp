@@ -2,7 +2,6 @@
 // and a RemoteSensor for each sensor asked for.
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <map>
 
 #include "ros2/remote_sensor.hpp"
@@ -16,28 +15,6 @@ using Clock = std::chrono::steady_clock;
 
 // Capture hosts whose descriptions the reader keeps until they are taken.
 constexpr int kDescriptionDepth = 16;
-
-// A cycle of a rig arrives as one burst of datagrams (16 QVGA sensors, 2
-// settings: 7.4 MB), faster than a busy receive thread drains them; what
-// overflows the socket's buffer is lost and repaired a heartbeat later, and
-// the cycle waits for it. So the sockets ask for a buffer of several cycles,
-// taking what the kernel grants (net.core.rmem_max caps it: README, "Rigs
-// across machines").
-constexpr const char* kReceiveBuffer = "<Internal><SocketReceiveBufferSize max=\"64MB\"/></Internal>";
-
-// This process's domain, created with DDS's bound on a sample's size and a
-// large receive buffer unless something here joined it first; whatever
-// CYCLONEDDS_URI configures (the network interface, the buffer) still
-// applies, except the bound.
-DdsEntity bounded_domain(int domain) {
-    const char* uri = std::getenv("CYCLONEDDS_URI");
-    const std::string config = std::string(kReceiveBuffer) + "," +
-                               (uri && *uri ? std::string(uri) + "," : std::string()) +
-                               "<Internal><MaxSampleSize>" + std::to_string(kMaxSampleBytes) +
-                               "B</MaxSampleSize></Internal>";
-    const dds_entity_t d = dds_create_domain(dds_domainid_t(domain), config.c_str());
-    return d > 0 ? DdsEntity(d, "DDS domain") : DdsEntity();
-}
 
 void to_stderr(const std::string& line) { std::fprintf(stderr, "vkfuse: %s\n", line.c_str()); }
 
@@ -55,7 +32,7 @@ RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<I
     check_domain(options.domain);  // before the domain is made with it
     RemoteDomain& d = *impl_->domain;
     d.report = options.report ? options.report : to_stderr;
-    d.domain = bounded_domain(options.domain);
+    d.domain = configured_domain(options.domain);
     d.participant = make_participant(options.domain);
     const DdsEntity reader = make_reader(d.participant, vkfuse_msgs_msg_dds__RigDescription__desc, "/vkfuse/rig",
                                          TopicQos::reader(kDescriptionDepth));

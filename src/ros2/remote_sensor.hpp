@@ -21,7 +21,7 @@ namespace vkfuse::ros2 {
 // participant (and with it every reader), after the sensors' threads are done
 // with it.
 struct RemoteDomain {
-    DdsEntity domain;  // set where this process created the domain with kMaxSampleBytes
+    DdsEntity domain;  // set where this process's domain was made here (configured_domain)
     DdsEntity participant;
     std::atomic<bool> closing{false};  // the RemoteRig is gone: waits end at once
     std::function<void(const std::string&)> report;

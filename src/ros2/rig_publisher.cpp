@@ -67,6 +67,7 @@ struct RigPublisher::Impl {
     std::string method;
     LedSettings settings;
     CaptureTime capture_time;
+    DdsEntity domain;  // where the publisher made the process's domain (configured_domain); goes last
     DdsEntity participant;
     std::vector<DdsEntity> fused, metrics, cycles, backgrounds;  // fused, metrics: when the rig fuses
     DdsEntity diagnostics, description;
@@ -92,6 +93,7 @@ struct RigPublisher::Impl {
                                                             " both name topics /vkfuse/" + token);
             tokens.push_back(token);
         }
+        domain = configured_domain(options.domain);
         participant = make_participant(options.domain);
         const TopicQos image_qos(kImageDepth, true), metrics_qos(kMetricsDepth, true),
             diagnostics_qos(kDiagnosticsDepth, false), rig_qos(kRigDepth, true), cycle_qos(kCycleDepth, true),

@@ -77,10 +77,15 @@ protected:
     void SetUp() override {
         if (const auto why = TwoHosts::unavailable()) GTEST_SKIP() << "two hosts: " << *why;
         hosts_ = std::make_unique<TwoHosts>();
-        // Participants announce themselves every second rather than Cyclone's
-        // 30: with packets dropped, a lost first announcement would otherwise
-        // hold discovery up for half a minute (README: lossy networks).
-        setenv("CYCLONEDDS_URI", "<Discovery><SPDPInterval>1s</SPDPInterval></Discovery>", 1);
+        // A lossy link's settings (README, "Lossy links"): participants
+        // announce themselves every second rather than Cyclone's 30 (a lost
+        // first announcement would otherwise hold discovery up for half a
+        // minute), and datagrams stay at Cyclone's 14.7 KB (one of 64 KB is
+        // lost with any of its 45 IP fragments).
+        setenv("CYCLONEDDS_URI",
+               "<Discovery><SPDPInterval>1s</SPDPInterval></Discovery>"
+               "<General><MaxMessageSize>14720B</MaxMessageSize></General>",
+               1);
     }
 
     // B fusing kCycles cycles into out, started first; A replaying the
