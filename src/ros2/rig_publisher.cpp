@@ -14,6 +14,7 @@
 #include "diagnostic_msgs.h"
 #include "io/png.hpp"
 #include "ros2/dds_entities.hpp"
+#include "ros2/job_thread.hpp"
 #include "ros2/messages.hpp"
 #include "vkfuse/core/error.hpp"
 #include "vkfuse/ros2/publisher.hpp"
@@ -77,6 +78,7 @@ struct RigPublisher::Impl {
     // by that sensor's thread), until every distinct setting has come.
     std::vector<std::vector<std::pair<Illumination, std::vector<Frame>>>> background_takes;
     const std::size_t distinct_settings;
+    JobThread background_writer;  // last: it finishes before the writers go
 
     Impl(const RigTopics& r, const PublisherOptions& o, CaptureTime t)
         : rig(r),
@@ -148,12 +150,20 @@ struct RigPublisher::Impl {
         write(cycles[i], &msg);
     }
 
+    // A sensor's background goes out from background_writer: serializing
+    // megabytes on the capture thread would hold its first cycles back,
+    // and the rig's with them.
     void add_background(std::size_t i, const Illumination& setting, const std::vector<Frame>& frames) {
         auto& takes = background_takes.at(i);
         takes.emplace_back(setting, frames);
         if (takes.size() < distinct_settings) return;
-        // One message of every setting's frames, in the order they came
-        // (the sequence's), pointing at the frames taken.
+        background_writer.push([this, i, whole = std::move(takes)] { write_background(i, whole); });
+        takes.clear();
+    }
+
+    // One message of every setting's frames, in the order they came (the
+    // sequence's), pointing at the frames taken.
+    void write_background(std::size_t i, const std::vector<std::pair<Illumination, std::vector<Frame>>>& takes) {
         const SensorInfo& sensor = rig.sensors[i];
         LitFrames messages(sensor.serial);
         for (const auto& [taken, fs] : takes) {
@@ -168,7 +178,6 @@ struct RigPublisher::Impl {
         msg.frames_per_setting = std::uint32_t(takes.front().second.size());
         msg.frames = sequence_of<dds_sequence_vkfuse_msgs_msg_dds__LitFrame_>(messages.messages);
         write(backgrounds[i], &msg);
-        takes.clear();
     }
 
     void describe_rig() {
@@ -315,6 +324,7 @@ RigPublisher::RigPublisher(const RigTopics& rig, const PublisherOptions& options
 // Subscribers still receiving the last cycles (a large image goes in many
 // fragments) get them before the participant leaves: at most kLinger in all.
 RigPublisher::~RigPublisher() {
+    impl_->background_writer.finish();  // every background written before the wait for its acknowledgement
     constexpr auto kLinger = std::chrono::seconds(2);
     const auto deadline = std::chrono::steady_clock::now() + kLinger;
     // Backgrounds and the description too: a fusion host that lost a

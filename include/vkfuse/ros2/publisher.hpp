@@ -120,8 +120,10 @@ public:
 
     // With options.frames: one setting's background frames of a sensor (as
     // RigConfig::on_background hands them over). Once every distinct setting
-    // of the sequence has come, /vkfuse/<token>/background is published.
-    // Sensors may call it from their own threads at once.
+    // of the sequence has come, /vkfuse/<token>/background is published,
+    // from a thread of the publisher's own, so the caller goes on at once
+    // (the destructor waits until it is written). Sensors may call it from
+    // their own threads at once.
     void publish_background(std::size_t sensor, const Illumination& setting, const std::vector<Frame>& frames);
 
     // Whether every topic of sensor's (fused, metrics, or cycle and
