@@ -29,7 +29,6 @@ struct RemoteRig::Impl {
 };
 
 RemoteRig::RemoteRig(const RemoteRigOptions& options) : impl_(std::make_shared<Impl>()) {
-    check_domain(options.domain);  // before the domain is made with it
     RemoteDomain& d = *impl_->domain;
     d.report = options.report ? options.report : to_stderr;
     d.domain = configured_domain(options.domain);

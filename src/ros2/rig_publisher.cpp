@@ -346,7 +346,6 @@ void RigPublisher::publish(const CycleResult& cycle) {
     for (std::size_t i = 0; i < cycle.sensors.size(); ++i) {
         const SensorCycle& s = cycle.sensors[i];
         const bool ok = s.status == SensorStatus::Ok && !s.frames.empty();
-        const auto frame_stamps = ok ? im.stamps(i, s.frames) : std::vector<builtin_interfaces_msg_dds__Time_>{};
         const auto stamp = ok ? im.stamp(i, s.newest_timestamp()) : stamp_of(std::chrono::system_clock::now());
         if (!im.fused.empty()) {
             if (ok && s.fused) im.publish_fused(i, s, stamp);
@@ -354,7 +353,7 @@ void RigPublisher::publish(const CycleResult& cycle) {
         }
         // A watch cycle (one setting) is no cycle a fusion host could fuse.
         if (!im.cycles.empty() && ok && s.frames.size() == im.rig.sequence.size())
-            im.publish_cycle(i, cycle.cycle, s, frame_stamps, stamp);
+            im.publish_cycle(i, cycle.cycle, s, im.stamps(i, s.frames), stamp);
     }
     const auto now = std::chrono::steady_clock::now();
     if (!im.diagnosed || now - *im.diagnosed >= kDiagnosticsPeriod) {

@@ -124,6 +124,16 @@ std::vector<Frame> grab_cycle(Sensor& sensor) {
     return out;
 }
 
+// A fusion host of the test publisher's sensor, reporting nothing.
+RemoteRigOptions options_for(int domain, double startup_timeout_s) {
+    RemoteRigOptions options;
+    options.domain = domain;
+    options.serials = {kSerial};
+    options.startup_timeout_s = startup_timeout_s;
+    options.report = [](const std::string&) {};
+    return options;
+}
+
 TEST(Ros2Hostile, BadSamplesAreRefusedCountedAndNeverHandedOut) {
     const int domain = own_domain();
     TestPublisher host(domain);
@@ -131,10 +141,7 @@ TEST(Ros2Hostile, BadSamplesAreRefusedCountedAndNeverHandedOut) {
     host.send_background();
     std::vector<std::string> lines;
     std::mutex lines_mutex;
-    RemoteRigOptions options;
-    options.domain = domain;
-    options.serials = {kSerial};
-    options.startup_timeout_s = 30;
+    RemoteRigOptions options = options_for(domain, 30);
     options.queue_cycles = 32;  // every sample sent is still there when the sensor is asked
     options.report = [&](const std::string& line) {
         std::lock_guard lock(lines_mutex);
@@ -217,12 +224,7 @@ TEST(Ros2Hostile, TheBackgroundIsReadOnceAndItsReaderThenGoes) {
     TestPublisher host(domain);
     host.describe();
     host.send_background();
-    RemoteRigOptions options;
-    options.domain = domain;
-    options.serials = {kSerial};
-    options.startup_timeout_s = 30;
-    options.report = [](const std::string&) {};
-    RemoteRig rig(options);
+    RemoteRig rig(options_for(domain, 30));
     Sensor& sensor = *rig.sensors().front().sensor;
     auto readers_of_background = [&] {
         dds_publication_matched_status_t status{};
@@ -250,12 +252,7 @@ TEST(Ros2Hostile, ABackgroundThatNeverComesEndsTheStartWithOneLine) {
     const int domain = own_domain();
     TestPublisher host(domain);
     host.describe();  // and no background
-    RemoteRigOptions options;
-    options.domain = domain;
-    options.serials = {kSerial};
-    options.startup_timeout_s = 1;
-    options.report = [](const std::string&) {};
-    RemoteRig rig(options);
+    RemoteRig rig(options_for(domain, 1));
     Sensor& sensor = *rig.sensors().front().sensor;
     sensor.set_illumination(kSequence[0]);
     try {
