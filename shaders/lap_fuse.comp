@@ -20,12 +20,14 @@ layout(push_constant, std430) uniform Push {
     int ch;
     uint frames;
     uint channels;
-    uint rule;
     uint use_table;
     uint group_first;  // the fused sensors covered: group_sensor() (common.glsl)
     uint group_count;
     uint group_period;
 } pc;
+// The detail rule (kernel_codes.h), fixed per pipeline: as a push constant
+// every rule's branch would run on a SIMD device.
+layout(constant_id = 0) const uint RULE = VKFUSE_RULE_MAX_ABS;
 #include "pyr_up.glsl"
 
 void main() {
@@ -45,13 +47,13 @@ void main() {
             for (int b = 0; b < 2; ++b) {
                 int y = 2 * i + a, x = 2 * j + b;
                 if (y < pc.height && x < pc.width)
-                    rule_add(st[2 * a + b], pc.rule, k, BUF(src).v[plane * plane_size + uint(y * pc.width + x)] - up[a][b]);
+                    rule_add(st[2 * a + b], RULE, k, BUF(src).v[plane * plane_size + uint(y * pc.width + x)] - up[a][b]);
             }
     }
     for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b) {
             int y = 2 * i + a, x = 2 * j + b;
             if (y < pc.height && x < pc.width)
-                BUF(dst).v[z * plane_size + uint(y * pc.width + x)] = TO_PLANE(rule_result(st[2 * a + b], pc.rule, pc.frames));
+                BUF(dst).v[z * plane_size + uint(y * pc.width + x)] = TO_PLANE(rule_result(st[2 * a + b], RULE, pc.frames));
         }
 }

@@ -25,28 +25,45 @@ void up_h(float left, vec4 q, float right, out vec4 even, out vec4 odd) {
     odd = 4.0 * q + 4.0 * r;
 }
 
-Up4 pyr_up_quad(uint base, int i, int j) {
-    ivec3 rows = ivec3(i == 0 ? min(1, pc.ch - 1) : i - 1, i, min(i + 1, pc.ch - 1));
-    vec4 e[3], o[3];
-    for (int a = 0; a < 3; ++a) {
-        float left, right;
-        vec4 q;
-        coarse_row(base, rows[a], j, left, q, right);
-        up_h(left, q, right, e[a], o[a]);
-    }
+// A source row's horizontal sums: even and odd output columns.
+struct UpRow {
+    vec4 even, odd;
+};
+
+UpRow up_row(uint base, int r, int j) {
+    float left, right;
+    vec4 q;
+    coarse_row(base, r, j, left, q, right);
+    UpRow u;
+    up_h(left, q, right, u.even, u.odd);
+    return u;
+}
+
+// The vertical pass over source rows i - 1 (a), i (b) and i + 1 (c), borders
+// already applied to which rows they are.
+Up4 pyr_up_rows(UpRow a, UpRow b, UpRow c) {
     Up4 u;
     if (pc.ch == 1) {
-        u.even0 = 8.0 * e[1] * (1.0 / 64.0);
-        u.odd0 = 8.0 * o[1] * (1.0 / 64.0);
+        u.even0 = 8.0 * b.even * (1.0 / 64.0);
+        u.odd0 = 8.0 * b.odd * (1.0 / 64.0);
         u.even1 = u.even0;
         u.odd1 = u.odd0;
         return u;
     }
-    u.even0 = ((1.0 * e[0] + 6.0 * e[1]) + 1.0 * e[2]) * (1.0 / 64.0);
-    u.odd0 = ((1.0 * o[0] + 6.0 * o[1]) + 1.0 * o[2]) * (1.0 / 64.0);
-    u.even1 = (4.0 * e[1] + 4.0 * e[2]) * (1.0 / 64.0);
-    u.odd1 = (4.0 * o[1] + 4.0 * o[2]) * (1.0 / 64.0);
+    u.even0 = ((1.0 * a.even + 6.0 * b.even) + 1.0 * c.even) * (1.0 / 64.0);
+    u.odd0 = ((1.0 * a.odd + 6.0 * b.odd) + 1.0 * c.odd) * (1.0 / 64.0);
+    u.even1 = (4.0 * b.even + 4.0 * c.even) * (1.0 / 64.0);
+    u.odd1 = (4.0 * b.odd + 4.0 * c.odd) * (1.0 / 64.0);
     return u;
+}
+
+// Source row i's neighbours as OpenCV's pyrUp borders take them: above row 0
+// is row 1 (reflect-101), below the last row is the last row.
+int up_row_above(int i) { return i == 0 ? min(1, pc.ch - 1) : i - 1; }
+int up_row_below(int i) { return min(i + 1, pc.ch - 1); }
+
+Up4 pyr_up_quad(uint base, int i, int j) {
+    return pyr_up_rows(up_row(base, up_row_above(i), j), up_row(base, i, j), up_row(base, up_row_below(i), j));
 }
 
 // Output columns 2j .. 2j+7 of one row as two quads, from its even and odd sums.

@@ -18,6 +18,7 @@ struct Level {
 
 
 constexpr std::uint32_t kPyrDownRows = VKFUSE_PYR_DOWN_ROWS;
+constexpr std::uint32_t kPyrUpRows = VKFUSE_PYR_UP_ROWS;
 
 // The pyramid's level sizes; lv[0].gauss is the caller's.
 std::vector<Level> level_sizes(const PlanConfig& cfg) {
@@ -33,14 +34,11 @@ void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
         auto& p = lv[l - 1];
         auto& c = lv[l];
         c.gauss = g.planes(std::uint64_t(g.planes_in()) * c.w * c.h);
-        // Four outputs per invocation, plane4 loads and stores: faster where
-        // rows are long; on short ones the border quads' sample-by-sample
-        // reads cost what the vectors save (measured on lavapipe: 25 % faster
-        // from 320 columns, equal at 160, slower below).
-        if (p.w % 8 == 0 && p.w >= 256) {
-            const DeviceSpan src = g.span(p.gauss);
+        // Four outputs per invocation from four plane4 loads a source row,
+        // where the source rows are whole pairs of quads.
+        if (p.w % 8 == 0) {
             g.rec.dispatch(
-                "pyr_down4", {src, src, g.span(c.gauss)},
+                "pyr_down4", {g.span(p.gauss), g.span(c.gauss)},
                 PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
                 Recorder::Work{c.w / 4, groups(c.h, kPyrDownRows), g.planes_in()});
             continue;
@@ -81,7 +79,8 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
                 record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h), table, 0, 0, group});
                 continue;
             }
-            // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the same scalars.
+            // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the
+            // same scalars, and the rule as their specialization constant 0.
             const Level& coarse = lv[l + 1];
             const PushConstants scalars = PushConstants()
                                               .i32("width", int(c.w))
@@ -90,17 +89,17 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
                                               .i32("ch", int(coarse.h))
                                               .u32("frames", std::uint32_t(g.cfg.frames))
                                               .u32("channels", std::uint32_t(g.cfg.channels))
-                                              .u32("rule", rule_code(g.cfg.fusion.detail_rule))
                                               .u32("use_table", table ? 1 : 0)
                                               .append(group.push(g.cfg));
+            const std::uint32_t rule[] = {rule_code(g.cfg.fusion.detail_rule)};
             const DeviceSpan src = g.span(gauss), up = g.span(sources.levels[l + 1].addr), dst = g.span(c.fused);
             const DeviceSpan frames = table ? *table : src;
-            if (c.w % 8 == 0)  // 2 x 8 outputs per invocation, plane4 loads and stores
+            if (c.w % 8 == 0)  // 2 x 8 outputs per invocation and coarse row, plane4 loads and stores
                 g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars,
-                               Recorder::Work{coarse.w / 4, coarse.h, group.planes(g.cfg)});
+                               Recorder::Work{coarse.w / 4, groups(coarse.h, kPyrUpRows), group.planes(g.cfg)}, rule);
             else  // 2 x 2 outputs per invocation
                 g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars,
-                               Recorder::Work{coarse.w, coarse.h, group.planes(g.cfg)});
+                               Recorder::Work{coarse.w, coarse.h, group.planes(g.cfg)}, rule);
         }
     }
     g.rec.mark("lap_fuse");
@@ -115,7 +114,7 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
                                .i32("height", int(c.h))
                                .i32("cw", int(up.w))
                                .i32("ch", int(up.h)),
-                           Recorder::Work{up.w / 4, up.h, g.planes_out()});
+                           Recorder::Work{up.w / 4, groups(up.h, kPyrUpRows), g.planes_out()});
             continue;
         }
         g.rec.dispatch(
