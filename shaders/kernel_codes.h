@@ -18,14 +18,15 @@
 
 // What one invocation of a kernel covers, which the C++ side sizes its
 // dispatches (and the skip tiles their scores) by.
-#define VKFUSE_PYR_DOWN_ROWS 8   // pyr_down(4).comp: output rows per invocation
-#define VKFUSE_PYR_UP_ROWS 2     // lap_fuse4.comp, lap_collapse4.comp: coarse rows per invocation
-#define VKFUSE_METRIC_ROWS 16    // metrics.comp: rows of an invocation's strip 4 pixels wide
-#define VKFUSE_CONV_BLOCK 4      // filter_taps.glsl: outputs per invocation of a wavelet convolution
-#define VKFUSE_ROW_PAIRS 8       // dwt_row_pairs.glsl: coefficient pairs per invocation of a row pass of quads
-#define VKFUSE_COMPOSE_SPAN 32   // sparse_compose.comp: pixels of a row per invocation
-#define VKFUSE_GATHER_WORDS 16   // skip_gather.comp: words per invocation
-#define VKFUSE_SKIP_TILE 32      // change_detect.comp: a skip tile's side (vkfuse::kSkipTile)
+#define VKFUSE_PYR_DOWN_ROWS 8       // pyr_down(4).comp: output rows per invocation
+#define VKFUSE_LAP_FUSE_ROWS 2       // lap_fuse4.comp: coarse rows per invocation
+#define VKFUSE_LAP_COLLAPSE_ROWS 4   // lap_collapse4.comp: coarse rows per invocation
+#define VKFUSE_METRIC_ROWS 16        // metrics.comp: rows of an invocation's strip 4 pixels wide
+#define VKFUSE_CONV_BLOCK 4          // filter_taps.glsl: outputs per invocation of a wavelet convolution
+#define VKFUSE_ROW_PAIRS 8           // dwt_row_pairs.glsl: coefficient pairs per invocation of a row pass of quads
+#define VKFUSE_COMPOSE_SPAN 32       // sparse_compose.comp: pixels of a row per invocation
+#define VKFUSE_GATHER_WORDS 16       // skip_gather.comp: words per invocation
+#define VKFUSE_SKIP_TILE 32          // change_detect.comp: a skip tile's side (vkfuse::kSkipTile)
 
 // filter_taps.glsl's specialization constants take constant_ids 0 .. 40 (F,
 // then 4 x 10 taps); a kernel's own constants come after them.

@@ -31,7 +31,7 @@ layout(constant_id = 0) const uint RULE = VKFUSE_RULE_MAX_ABS;
 // horizontal sums are loaded once and kept for the next rows' outputs, instead
 // of loaded for each of the three rows that read them. Two rows measured
 // fastest on lavapipe: at four, the kept rule states spill.
-const int ROWS = VKFUSE_PYR_UP_ROWS;
+const int ROWS = VKFUSE_LAP_FUSE_ROWS;
 
 void main() {
     int j = int(gl_GlobalInvocationID.x) * 4, i0 = int(gl_GlobalInvocationID.y) * ROWS;

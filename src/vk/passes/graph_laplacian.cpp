@@ -18,7 +18,8 @@ struct Level {
 
 
 constexpr std::uint32_t kPyrDownRows = VKFUSE_PYR_DOWN_ROWS;
-constexpr std::uint32_t kPyrUpRows = VKFUSE_PYR_UP_ROWS;
+constexpr std::uint32_t kLapFuseRows = VKFUSE_LAP_FUSE_ROWS;
+constexpr std::uint32_t kLapCollapseRows = VKFUSE_LAP_COLLAPSE_ROWS;
 
 // The pyramid's level sizes; lv[0].gauss is the caller's.
 std::vector<Level> level_sizes(const PlanConfig& cfg) {
@@ -96,7 +97,7 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
             const DeviceSpan frames = table ? *table : src;
             if (c.w % 8 == 0)  // 2 x 8 outputs per invocation and coarse row, plane4 loads and stores
                 g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars,
-                               Recorder::Work{coarse.w / 4, groups(coarse.h, kPyrUpRows), group.planes(g.cfg)}, rule);
+                               Recorder::Work{coarse.w / 4, groups(coarse.h, kLapFuseRows), group.planes(g.cfg)}, rule);
             else  // 2 x 2 outputs per invocation
                 g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars,
                                Recorder::Work{coarse.w, coarse.h, group.planes(g.cfg)}, rule);
@@ -114,7 +115,7 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
                                .i32("height", int(c.h))
                                .i32("cw", int(up.w))
                                .i32("ch", int(up.h)),
-                           Recorder::Work{up.w / 4, groups(up.h, kPyrUpRows), g.planes_out()});
+                           Recorder::Work{up.w / 4, groups(up.h, kLapCollapseRows), g.planes_out()});
             continue;
         }
         g.rec.dispatch(
