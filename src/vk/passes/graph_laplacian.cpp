@@ -35,13 +35,16 @@ void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
         auto& p = lv[l - 1];
         auto& c = lv[l];
         c.gauss = g.planes(std::uint64_t(g.planes_in()) * c.w * c.h);
-        // Four outputs per invocation from four plane4 loads a source row,
-        // where the source rows are whole pairs of quads.
+        // Where the source rows are whole pairs of quads, 4 QUADS outputs per
+        // invocation from 2 QUADS + 2 plane4 loads a source row: two quads
+        // where the rows allow (6 loads for 8 outputs instead of 8).
         if (p.w % 8 == 0) {
+            const std::uint32_t quads = p.w % 16 == 0 ? 2 : 1;
+            const std::uint32_t spec[] = {quads};
             g.rec.dispatch(
                 "pyr_down4", {g.span(p.gauss), g.span(c.gauss)},
                 PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
-                Recorder::Work{c.w / 4, groups(c.h, kPyrDownRows), g.planes_in()});
+                Recorder::Work{c.w / (4 * quads), groups(c.h, kPyrDownRows), g.planes_in()}, spec);
             continue;
         }
         g.rec.dispatch("pyr_down", {g.span(p.gauss), g.span(c.gauss)},
