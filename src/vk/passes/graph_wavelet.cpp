@@ -395,23 +395,29 @@ private:
         const DeviceSpan src = g_.span(rows.addr);
         std::vector<std::uint32_t> constants = taps_;  // then the kernel's own: FRAMES
         constants.push_back(std::uint32_t(g_.cfg.frames));
+        const PushConstants scalars = PushConstants()
+                                          .i32("n", s.h)
+                                          .i32("half_len", s.ch)
+                                          .i32("columns", s.bw)
+                                          .i32("row_stride", s.bw)
+                                          .u32("src_plane_stride", rows.plane_stride)
+                                          .u32("block_plane_stride", coeffs.plane_stride)
+                                          .i32("approx_w", s.cw)
+                                          .u32("channels", std::uint32_t(g_.cfg.channels))
+                                          .u32("base_rule", rule_code(spec_.base_rule))
+                                          .u32("detail_rule", rule_code(spec_.detail_rule))
+                                          .u32("deepest", deepest ? 1 : 0);
+        const std::uint32_t blocks = groups(std::uint32_t(s.ch), kConvBlock);
+        // Four columns per invocation (plane4 windows) where every column is
+        // computed and a quad holds only low or only high columns.
+        if (r.push == 0 && s.bw % 4 == 0 && s.cw % 4 == 0) {
+            g_.rec.dispatch("dwt_fuse_columns4", {src, g_.span(coeffs.addr), g_.span(out.addr)}, scalars,
+                            Recorder::Work{std::uint32_t(s.bw / 4), blocks, g_.planes_out()}, constants);
+            return;
+        }
         g_.rec.dispatch("dwt_fuse_columns", {src, g_.span(coeffs.addr), g_.span(out.addr), r.or_else(src)},
-                        PushConstants()
-                            .i32("n", s.h)
-                            .i32("half_len", s.ch)
-                            .i32("columns", s.bw)
-                            .i32("row_stride", s.bw)
-                            .u32("src_plane_stride", rows.plane_stride)
-                            .u32("block_plane_stride", coeffs.plane_stride)
-                            .i32("approx_w", s.cw)
-                            .u32("channels", std::uint32_t(g_.cfg.channels))
-                            .u32("base_rule", rule_code(spec_.base_rule))
-                            .u32("detail_rule", rule_code(spec_.detail_rule))
-                            .u32("deepest", deepest ? 1 : 0)
-                            .u32("region", r.push)
-                            .u32("slot_planes", std::uint32_t(g_.cfg.channels)),
-                        Recorder::Work{std::uint32_t(s.bw), groups(std::uint32_t(s.ch), kConvBlock), g_.planes_out()},
-                        constants);
+                        PushConstants(scalars).u32("region", r.push).u32("slot_planes", std::uint32_t(g_.cfg.channels)),
+                        Recorder::Work{std::uint32_t(s.bw), blocks, g_.planes_out()}, constants);
     }
 
     void fuse(const PlaneView& coeffs, const PlaneView& out, const LevelShape& s, bool deepest) {
