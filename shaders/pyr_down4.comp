@@ -5,10 +5,10 @@
 // a multiple of 8 QUADS: outputs x .. x + 4 QUADS - 1 of a source row read its
 // samples 2x-4 .. 2x + 8 QUADS + 3 as 2 QUADS + 2 plane4 (neighbouring
 // outputs share them: the more quads, the fewer loads per output), each
-// output's horizontal sum added in pyr_down's order. At the row's ends the quads outside it are loaded from
-// inside and the two samples reflect-101 needs are selected, without a
-// branch: on a SIMD device a border lane's branch would make its neighbours
-// run the sample-by-sample path too.
+// output's horizontal sum added in pyr_down's order. At the row's ends the
+// quads outside it are loaded from inside and the two samples reflect-101
+// needs are selected, without a branch: on a SIMD device a border lane's
+// branch would make its neighbours run the sample-by-sample path too.
 #define BUFFERS(X) X(0, plane4_t, src4) X(1, plane4_t, dst4)
 #include "bindings.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;

@@ -62,10 +62,6 @@ Up4 pyr_up_rows(UpRow a, UpRow b, UpRow c) {
 int up_row_above(int i) { return i == 0 ? min(1, pc.ch - 1) : i - 1; }
 int up_row_below(int i) { return min(i + 1, pc.ch - 1); }
 
-Up4 pyr_up_quad(uint base, int i, int j) {
-    return pyr_up_rows(up_row(base, up_row_above(i), j), up_row(base, i, j), up_row(base, up_row_below(i), j));
-}
-
 // Output columns 2j .. 2j+7 of one row as two quads, from its even and odd sums.
 vec4 interleave_lo(vec4 even, vec4 odd) { return vec4(even.x, odd.x, even.y, odd.y); }
 vec4 interleave_hi(vec4 even, vec4 odd) { return vec4(even.z, odd.z, even.w, odd.w); }
