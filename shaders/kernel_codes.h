@@ -19,8 +19,7 @@
 // What one invocation of a kernel covers, which the C++ side sizes its
 // dispatches (and the skip tiles their scores) by.
 #define VKFUSE_PYR_DOWN_ROWS 8       // pyr_down(4).comp: output rows per invocation
-#define VKFUSE_LAP_FUSE_ROWS 2       // lap_fuse4.comp: coarse rows per invocation
-#define VKFUSE_LAP_COLLAPSE_ROWS 4   // lap_collapse4.comp: coarse rows per invocation
+#define VKFUSE_LAP_FUSE_ROWS 2       // lap_fuse_collapse4.comp: coarse rows per invocation
 #define VKFUSE_METRIC_ROWS 16        // metrics.comp: rows of an invocation's strip 4 pixels wide
 #define VKFUSE_CONV_BLOCK 4          // filter_taps.glsl: outputs per invocation of a wavelet convolution
 #define VKFUSE_ROW_PAIRS 8           // dwt_row_pairs.glsl: coefficient pairs per invocation of a row pass of quads

@@ -2,21 +2,13 @@
 // from the 3 x 6 source samples (rows i - 1 reflected, i, i + 1 clamped;
 // columns j - 1 .. j + 4) they draw on, j a multiple of 4 in a plane whose
 // width cw is one too. pyr_up_block (common.glsl) lane by lane, with the same
-// sums in the same order. The including kernel binds the source planes as
-// `coarse` (plane_t) and `coarse4` (plane4_t) and has push fields cw and ch.
+// sums in the same order. The including kernel has push fields cw and ch and
+// defines a reader of source rows per source it walks with PYR_UP_ROW.
 
 struct Up4 {
     vec4 even0, odd0;  // output row 2i: columns 2(j+t) and 2(j+t) + 1
     vec4 even1, odd1;  // output row 2i + 1
 };
-
-// Source row r's samples j-1 .. j+4 as (left, quad, right), borders as OpenCV.
-void coarse_row(uint base, int r, int j, out float left, out vec4 q, out float right) {
-    uint row = base + uint(r * pc.cw);
-    q = vec4(BUF(coarse4).v[(row + uint(j)) / 4u]);
-    left = j == 0 ? q.y : float(BUF(coarse).v[row + uint(j - 1)]);
-    right = j + 4 < pc.cw ? float(BUF(coarse).v[row + uint(j + 4)]) : q.w;
-}
 
 // Horizontal pyrUp sums of one source row for even and odd output columns.
 void up_h(float left, vec4 q, float right, out vec4 even, out vec4 odd) {
@@ -30,14 +22,20 @@ struct UpRow {
     vec4 even, odd;
 };
 
-UpRow up_row(uint base, int r, int j) {
-    float left, right;
-    vec4 q;
-    coarse_row(base, r, j, left, q, right);
-    UpRow u;
-    up_h(left, q, right, u.even, u.odd);
-    return u;
-}
+// Defines `UpRow FN(uint base, int r, int j)`: source row r's sums, from the
+// plane at `base` of the buffers PLANE (plane_t) and PLANE4 (plane4_t), whose
+// planes are cw x ch. Row r's samples j-1 .. j+4 as (left, quad, right),
+// borders as OpenCV's: left of column 0 is column 1, right of the last the last.
+#define PYR_UP_ROW(FN, PLANE, PLANE4)                                                       \
+    UpRow FN(uint base, int r, int j) {                                                     \
+        uint row = base + uint(r * pc.cw);                                                  \
+        vec4 q = vec4(BUF(PLANE4).v[(row + uint(j)) / 4u]);                                 \
+        float left = j == 0 ? q.y : float(BUF(PLANE).v[row + uint(j - 1)]);                 \
+        float right = j + 4 < pc.cw ? float(BUF(PLANE).v[row + uint(j + 4)]) : q.w;        \
+        UpRow u;                                                                            \
+        up_h(left, q, right, u.even, u.odd);                                                \
+        return u;                                                                           \
+    }
 
 // The vertical pass over source rows i - 1 (a), i (b) and i + 1 (c), borders
 // already applied to which rows they are.

@@ -1,6 +1,8 @@
-// Laplacian pyramid fusion (docs/spec.md): pyrDown chain per frame, level-by-level
-// fusion of G_l - pyrUp(G_{l+1}) (the Laplacian coefficient is formed inside
-// the fusion kernel, never stored), then collapse from the top, in place.
+// Laplacian pyramid fusion (docs/spec.md): pyrDown chain per frame, then from
+// the top level down, each level's fusion of G_l - pyrUp(G_{l+1}) and its
+// collapse (the Laplacian coefficient is formed inside the fusion kernel,
+// never stored; where a level's rows are whole pairs of quads, neither is the
+// fused detail).
 #include <span>
 #include <vector>
 
@@ -15,11 +17,8 @@ struct Level {
     VkDeviceAddress fused;  // C_l, then R_l: S*C planes
 };
 
-
-
 constexpr std::uint32_t kPyrDownRows = VKFUSE_PYR_DOWN_ROWS;
 constexpr std::uint32_t kLapFuseRows = VKFUSE_LAP_FUSE_ROWS;
-constexpr std::uint32_t kLapCollapseRows = VKFUSE_LAP_COLLAPSE_ROWS;
 
 // The pyramid's level sizes; lv[0].gauss is the caller's.
 std::vector<Level> level_sizes(const PlanConfig& cfg) {
@@ -61,11 +60,35 @@ std::vector<PlaneView> levels_of(const std::vector<Level>& lv) {
     return out;
 }
 
-// Each level's fusion across the frames, one dispatch per group of sources,
-// then the collapse from the top, in place; returns the fused planes. A plan
-// (period 0) has one group, its own pyramids, fused for every sensor; a cache
-// has its groups' pyramids, fused for sensors in blocks of `period` sources,
-// frames named by the table.
+// The scalars lap_fuse and lap_fuse_collapse4 take at level l.
+PushConstants level_scalars(const GraphBuilder& g, const Level& c, const Level& coarse, bool table,
+                            const SensorGroup& group) {
+    return PushConstants()
+        .i32("width", int(c.w))
+        .i32("height", int(c.h))
+        .i32("cw", int(coarse.w))
+        .i32("ch", int(coarse.h))
+        .u32("frames", std::uint32_t(g.cfg.frames))
+        .u32("channels", std::uint32_t(g.cfg.channels))
+        .u32("use_table", table ? 1 : 0)
+        .append(group.push(g.cfg));
+}
+
+// Levels whose rows are whole pairs of quads fuse and collapse in one pass
+// (lap_fuse_collapse4); the others fuse (lap_fuse), then collapse
+// (lap_collapse).
+bool fused_with_collapse(const Level& l) { return l.w % 8 == 0; }
+
+// Each level's fusion across the frames and the collapse from the top;
+// returns the fused planes. A plan (period 0) has one group, its own
+// pyramids, fused for every sensor; a cache has its groups' pyramids, fused
+// for sensors in blocks of `period` sources, frames named by the table.
+//
+//   G_L -> [rule_fuse] -> R_L                       (the base rule)
+//   G_l -> [lap_fuse] -> C_l                        (levels of other widths; independent of one another)
+//   for l = L-1 .. 0:
+//     G_l, G_{l+1}, R_{l+1} -> [lap_fuse_collapse4] -> R_l
+//     or C_l, R_{l+1} -> [lap_collapse] -> R_l (C_l in place)
 VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::span<const CachedSources> from,
                                   std::uint32_t period, std::optional<DeviceSpan> table) {
     const std::size_t L = lv.size() - 1;
@@ -73,60 +96,49 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
         auto& c = lv[l];
         c.fused = g.planes(std::uint64_t(g.planes_out()) * c.w * c.h);
     }
+    const std::uint32_t rule[] = {rule_code(g.cfg.fusion.detail_rule)};
+    auto group_of = [&](const CachedSources& sources) {
+        return period ? SensorGroup{sources.first, sources.count, period} : SensorGroup{};
+    };
     for (const CachedSources& sources : from) {
-        const SensorGroup group = period ? SensorGroup{sources.first, sources.count, period} : SensorGroup{};
-        for (std::size_t l = 0; l <= L; ++l) {
-            const auto& c = lv[l];
-            const VkDeviceAddress gauss = sources.levels[l].addr;
-            if (l == L) {  // the base rule on G_L itself
-                const PlaneView top_in{gauss, int(c.w), c.w * c.h}, top_out{c.fused, int(c.w), c.w * c.h};
-                record_rule_fuse(g, {top_in, top_out, int(c.w), int(c.h), int(c.w), int(c.h), table, 0, 0, group});
-                continue;
-            }
-            // The detail rule on G_l - pyrUp(G_{l+1}); both kernels take the
-            // same scalars, and the rule as their specialization constant 0.
-            const Level& coarse = lv[l + 1];
-            const PushConstants scalars = PushConstants()
-                                              .i32("width", int(c.w))
-                                              .i32("height", int(c.h))
-                                              .i32("cw", int(coarse.w))
-                                              .i32("ch", int(coarse.h))
-                                              .u32("frames", std::uint32_t(g.cfg.frames))
-                                              .u32("channels", std::uint32_t(g.cfg.channels))
-                                              .u32("use_table", table ? 1 : 0)
-                                              .append(group.push(g.cfg));
-            const std::uint32_t rule[] = {rule_code(g.cfg.fusion.detail_rule)};
-            const DeviceSpan src = g.span(gauss), up = g.span(sources.levels[l + 1].addr), dst = g.span(c.fused);
-            const DeviceSpan frames = table ? *table : src;
-            if (c.w % 8 == 0)  // 2 x 8 outputs per invocation and coarse row, plane4 loads and stores
-                g.rec.dispatch("lap_fuse4", {src, up, up, dst, frames}, scalars,
-                               Recorder::Work{coarse.w / 4, groups(coarse.h, kLapFuseRows), group.planes(g.cfg)}, rule);
-            else  // 2 x 2 outputs per invocation
-                g.rec.dispatch("lap_fuse", {src, up, dst, frames}, scalars,
-                               Recorder::Work{coarse.w, coarse.h, group.planes(g.cfg)}, rule);
+        const SensorGroup group = group_of(sources);
+        const Level& top = lv[L];
+        const PlaneView top_in{sources.levels[L].addr, int(top.w), top.w * top.h};
+        const PlaneView top_out{top.fused, int(top.w), top.w * top.h};
+        record_rule_fuse(g, {top_in, top_out, int(top.w), int(top.h), int(top.w), int(top.h), table, 0, 0, group});
+        for (std::size_t l = 0; l < L; ++l) {
+            if (fused_with_collapse(lv[l])) continue;
+            const DeviceSpan src = g.span(sources.levels[l].addr);
+            g.rec.dispatch("lap_fuse",
+                           {src, g.span(sources.levels[l + 1].addr), g.span(lv[l].fused), table ? *table : src},
+                           level_scalars(g, lv[l], lv[l + 1], table.has_value(), group),
+                           Recorder::Work{lv[l + 1].w, lv[l + 1].h, group.planes(g.cfg)}, rule);
         }
     }
     g.rec.mark("lap_fuse");
-    for (std::size_t i = L; i-- > 0;) {
-        auto& c = lv[i];
-        auto& up = lv[i + 1];
-        if (c.w % 8 == 0) {
-            const DeviceSpan coarse = g.span(up.fused);
-            g.rec.dispatch("lap_collapse4", {coarse, coarse, g.span(c.fused)},
-                           PushConstants()
-                               .i32("width", int(c.w))
-                               .i32("height", int(c.h))
-                               .i32("cw", int(up.w))
-                               .i32("ch", int(up.h)),
-                           Recorder::Work{up.w / 4, groups(up.h, kLapCollapseRows), g.planes_out()});
+    bool any_fused = false;
+    for (std::size_t l = L; l-- > 0;) {
+        const Level& c = lv[l];
+        const Level& up = lv[l + 1];
+        const DeviceSpan residual = g.span(up.fused);
+        if (!fused_with_collapse(c)) {
+            g.rec.dispatch(
+                "lap_collapse", {residual, g.span(c.fused)},
+                PushConstants().i32("width", int(c.w)).i32("height", int(c.h)).i32("cw", int(up.w)).i32("ch", int(up.h)),
+                Recorder::Work{up.w, up.h, g.planes_out()});
             continue;
         }
-        g.rec.dispatch(
-            "lap_collapse", {g.span(up.fused), g.span(c.fused)},
-            PushConstants().i32("width", int(c.w)).i32("height", int(c.h)).i32("cw", int(up.w)).i32("ch", int(up.h)),
-            Recorder::Work{up.w, up.h, g.planes_out()});
+        any_fused = true;
+        for (const CachedSources& sources : from) {
+            const SensorGroup group = group_of(sources);
+            const DeviceSpan src = g.span(sources.levels[l].addr), coarse = g.span(sources.levels[l + 1].addr);
+            g.rec.dispatch("lap_fuse_collapse4", {src, coarse, coarse, residual, residual, g.span(c.fused),
+                                                  table ? *table : src},
+                           level_scalars(g, c, up, table.has_value(), group),
+                           Recorder::Work{up.w / 4, groups(up.h, kLapFuseRows), group.planes(g.cfg)}, rule);
+        }
     }
-    g.rec.mark("lap_collapse");
+    g.rec.mark(any_fused ? "lap_fuse_collapse" : "lap_collapse");
     return lv[0].fused;
 }
 

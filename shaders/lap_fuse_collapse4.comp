@@ -1,12 +1,20 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
-// lap_fuse.comp eight columns at a time, for levels whose width is a multiple
-// of 8: an invocation takes the 2 x 8 outputs of coarse samples j .. j+3 of
-// each of its rows (pyr_up4.glsl), reads G_l as four plane4 per frame and
-// row and stores four.
-#define BUFFERS(X) X(0, plane4_t, src4) X(1, plane_t, coarse) X(2, plane4_t, coarse4) X(3, plane4_t, dst4) \
-    X(4, uint, table)
+// One Laplacian level fused and collapsed in one pass, eight columns at a
+// time, for levels whose width is a multiple of 8:
+//     R_l = rule_k(G_l^k - pyrUp(G_{l+1}^k)) + pyrUp(R_{l+1})
+// An invocation takes the 2 x 8 outputs of coarse samples j .. j+3 of each of
+// its rows (pyr_up4.glsl), reads G_l as four plane4 per frame and row, and
+// stores R_l's four. The fused detail C_l lives in registers only: storing it
+// for a separate collapse pass to read back and overwrite costs two plane
+// accesses per sample and a dispatch per level.
+//
+// coarse: G_{l+1} of every frame (cw x ch); src4: G_l of every frame; residual:
+// R_{l+1} of every fused plane, complete before this pass (the levels run from
+// the top down); dst4: R_l.
+#define BUFFERS(X) X(0, plane4_t, src4) X(1, plane_t, coarse) X(2, plane4_t, coarse4) X(3, plane_t, residual) \
+    X(4, plane4_t, residual4) X(5, plane4_t, dst4) X(6, uint, table)
 #include "bindings.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(push_constant, std430) uniform Push {
@@ -26,6 +34,8 @@ layout(push_constant, std430) uniform Push {
 // every rule's branch would run on a SIMD device.
 layout(constant_id = 0) const uint RULE = VKFUSE_RULE_MAX_ABS;
 #include "pyr_up4.glsl"
+PYR_UP_ROW(up_row, coarse, coarse4)
+PYR_UP_ROW(up_residual_row, residual, residual4)
 
 // Coarse rows per invocation: walking down a frame's rows, each coarse row's
 // horizontal sums are loaded once and kept for the next rows' outputs, instead
@@ -68,16 +78,27 @@ void main() {
             at = below;
         }
     }
+    // The collapse: the same walk down R_{l+1}'s rows, each output the fused
+    // detail plus pyrUp(R_{l+1}) (lap_collapse.comp's sum, in its order).
+    uint base = z * uint(pc.cw * pc.ch);
     uint d = z * plane_size / 4u + q0;
+    UpRow above = up_residual_row(base, up_row_above(i0), j), at = up_residual_row(base, i0, j);
     for (int r = 0; r < ROWS; ++r) {
         int i = i0 + r;
         if (i >= pc.ch) break;
+        UpRow below = up_residual_row(base, up_row_below(i), j);
+        Up4 up = pyr_up_rows(above, at, below);
         uint o = 4 * r, q = d + uint(2 * r) * row4;
-        BUF(dst4).v[q] = TO_PLANE4(rule_result4(RULE, pc.frames, pick[o], sum[o]));
-        BUF(dst4).v[q + 1u] = TO_PLANE4(rule_result4(RULE, pc.frames, pick[o + 1], sum[o + 1]));
+        BUF(dst4).v[q] = TO_PLANE4(interleave_lo(up.even0, up.odd0) + rule_result4(RULE, pc.frames, pick[o], sum[o]));
+        BUF(dst4).v[q + 1u] =
+            TO_PLANE4(interleave_hi(up.even0, up.odd0) + rule_result4(RULE, pc.frames, pick[o + 1], sum[o + 1]));
         if (2 * i + 1 < pc.height) {
-            BUF(dst4).v[q + row4] = TO_PLANE4(rule_result4(RULE, pc.frames, pick[o + 2], sum[o + 2]));
-            BUF(dst4).v[q + row4 + 1u] = TO_PLANE4(rule_result4(RULE, pc.frames, pick[o + 3], sum[o + 3]));
+            BUF(dst4).v[q + row4] =
+                TO_PLANE4(interleave_lo(up.even1, up.odd1) + rule_result4(RULE, pc.frames, pick[o + 2], sum[o + 2]));
+            BUF(dst4).v[q + row4 + 1u] =
+                TO_PLANE4(interleave_hi(up.even1, up.odd1) + rule_result4(RULE, pc.frames, pick[o + 3], sum[o + 3]));
         }
+        above = at;
+        at = below;
     }
 }
