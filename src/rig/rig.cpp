@@ -140,13 +140,16 @@ Rig::Impl::Impl(Context* c, RigConfig config, std::vector<RigSensor> s)
         const Image zero(height, width, 3);  // until a sensor's own background is in
         const SkipReference black{std::vector<Image>(cfg->sequence.size(), zero),
                                   std::vector<Image>(cfg->sequence.size(), zero)};
-        // The backgrounds' plan fuses these black means once now: a driver
-        // that compiles its shaders at their first dispatch does so here,
-        // not while the first cycles wait for the real backgrounds.
-        bg_engine = rig::make_engine(context, plan_config(PixelType::F32, false));
-        bg_engine->run(std::vector<FrameView>(sensors.size() * cfg->sequence.size(), FrameView::of(zero)));
+        // On a device, the backgrounds' plan fuses these black means once
+        // now: a driver that compiles its shaders at their first dispatch does
+        // so here, not while the first cycles wait for the real backgrounds.
+        // On the CPU there is nothing to warm, and black fuses to black.
+        if (context) {
+            bg_engine = rig::make_engine(context, plan_config(PixelType::F32, false));
+            bg_engine->run(std::vector<FrameView>(sensors.size() * cfg->sequence.size(), FrameView::of(zero)));
+        }
         for (std::size_t i = 0; i < sensors.size(); ++i) {
-            engine->set_background(int(i), bg_engine->fused(int(i)));
+            engine->set_background(int(i), bg_engine ? bg_engine->fused(int(i)) : zero);
             if (cfg->skip.policy != SkipPolicy::Off) engine->set_skip_reference(int(i), black);
         }
     }
@@ -213,6 +216,7 @@ void Rig::Impl::apply_new_backgrounds() {
         }
     }
     if (!any || !engine) return;
+    if (!bg_engine) bg_engine = rig::make_engine(context, plan_config(PixelType::F32, false));
     const Image zero(height, width, 3);
     std::vector<FrameView> views;
     for (const auto& means : fresh)
