@@ -160,9 +160,11 @@ TEST_F(VulkanFusion, PointwiseMethods) {
 TEST_F(VulkanFusion, LaplacianSizesAndLevels) {
     int i = 0;
     // Widths of whole pairs of quads (8, 16, 40, 320, 640) take the plane4
-    // kernels, the row's first and last quad in one at 8.
-    for (auto [h, w] : {std::pair{1, 1}, {1, 9}, {9, 1}, {2, 3}, {5, 7}, {3, 8}, {2, 16}, {7, 40}, {61, 97}, {240, 320},
-                        {480, 640}})
+    // kernels, the row's first and last quad in one at 8; 31 (levels 31, 16,
+    // 8, 4, 2) alternates them with the scalar ones, so each collapses onto a
+    // level the other made.
+    for (auto [h, w] : {std::pair{1, 1}, {1, 9}, {9, 1}, {2, 3}, {5, 7}, {3, 8}, {2, 16}, {7, 40}, {5, 31}, {61, 97},
+                        {240, 320}, {480, 640}})
         for (int levels : {1, 4, 6}) {
             FusionSpec s;
             s.method = Method::Laplacian;
