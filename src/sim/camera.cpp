@@ -12,8 +12,14 @@ void expose(const LedImages& images, const std::vector<std::array<double, 3>>& r
     const double inv_electrons = 1.0 / noise.electrons_per_dn;
     const double read2 = noise.read_noise_dn * noise.read_noise_dn;
     const std::size_t row_values = std::size_t(width) * 3;
-    std::array<double, 3> gain{};
-    for (int c = 0; c < 3; ++c) gain[std::size_t(c)] = readout.analog_gain * readout.white_balance[std::size_t(c)];
+    // A row's gains sample by sample (channel c of a pixel at 3x + c) and its
+    // noise draws, taken from the stream in sample order before the row's
+    // arithmetic: that loop then carries no state from one sample to the
+    // next, and the compiler takes it two samples at a time (the same
+    // operations in the same order on each, so the same bits).
+    std::vector<double> gains(row_values), normals(row_values);
+    for (std::size_t j = 0; j < row_values; ++j)
+        gains[j] = readout.analog_gain * readout.white_balance[j % 3];
     // A local copy: stores through the 8-bit output may alias anything, so
     // the caller's stream would be reloaded and stored around every sample.
     NoiseStream local = rng;
@@ -24,18 +30,17 @@ void expose(const LedImages& images, const std::vector<std::array<double, 3>>& r
         const float* g = &images[1][y * row_values];
         const float* b = &images[2][y * row_values];
         std::uint8_t* dst = out + y * row_values;
-        // Channel by channel within a pixel (no i % 3), rounded inline: a
-        // libm call per sample was a third of a frame's cost (x86-64's
-        // baseline has no rounding instruction). Halves round up, where
-        // nearbyint would round to even: a tie needs noise exact to 2^-40.
-        for (std::size_t i = 0; i < row_values; i += 3)
-            for (std::size_t c = 0; c < 3; ++c) {
-                const std::size_t j = i + c;
-                const double signal = drive[0] * r[j] + drive[1] * g[j] + drive[2] * b[j];
-                const double value = gain[c] * (signal + std::sqrt(signal * inv_electrons + read2) * local.normal());
-                // The ADC clips: a saturated pixel reads 255 whatever the light.
-                dst[j] = std::uint8_t(std::clamp(value, 0.0, 255.0) + 0.5);
-            }
+        for (double& n : normals) n = local.normal();
+        // Rounded inline: a libm call per sample was a third of a frame's
+        // cost (x86-64's baseline has no rounding instruction). Halves round
+        // up, where nearbyint would round to even: a tie needs noise exact to
+        // 2^-40.
+        for (std::size_t j = 0; j < row_values; ++j) {
+            const double signal = drive[0] * r[j] + drive[1] * g[j] + drive[2] * b[j];
+            const double value = gains[j] * (signal + std::sqrt(signal * inv_electrons + read2) * normals[j]);
+            // The ADC clips: a saturated pixel reads 255 whatever the light.
+            dst[j] = std::uint8_t(std::min(std::max(value, 0.0), 255.0) + 0.5);
+        }
     }
     rng = local;
 }
