@@ -558,7 +558,11 @@ const Image& Plan::fused(int sensor) const {
     if (im.skipped(sensor)) return im.skip->skipped_image(sensor);
     auto& img = im.fused[std::size_t(sensor)];
     if (!im.fused_fresh[std::size_t(sensor)]) {
-        Image out(im.cfg.height, im.cfg.width, im.cfg.channels);
+        // The last cycle's image is written over in place: no allocation and
+        // no zero fill of a buffer every sample of which is written next.
+        if (img.height != im.cfg.height || img.width != im.cfg.width || img.channels != im.cfg.channels)
+            img = Image(im.cfg.height, im.cfg.width, im.cfg.channels);
+        Image& out = img;
         const float* src = static_cast<const float*>(im.readback.mapped()) + im.result_slot(sensor) * out.size();
         const int e = im.exponent[std::size_t(sensor)];
         if (e == 0) {  // copied and checked in one pass
@@ -572,7 +576,6 @@ const Image& Plan::fused(int sensor) const {
                                                     number(std::ldexp(double(src[i]), e)) + " at " +
                                                     position(im.cfg, i) + " lies beyond float32's range");
         }
-        img = std::move(out);
         im.fused_fresh[std::size_t(sensor)] = true;
     }
     return img;
