@@ -6,10 +6,11 @@
 // BUF(name).v[i]. The kernel is built in two variants from that one list
 // (CMakeLists.txt; Recorder::dispatch passes the buffers either way):
 //  - bound (default): descriptor-bound storage buffers, set 0, binding b.
-//    The cheapest way to memory on every device we measured (on lavapipe a
-//    vec4 through a binding costs 0.6x a vec4 through a device address).
 //  - VKFUSE_ADDRESSED: 64-bit device addresses at the start of the push
-//    constants, for plans whose buffers exceed maxStorageBufferRange.
+//    constants: on CPU devices (lavapipe, where the same kernels measured up
+//    to a fifth faster this way), for kernels with more buffers than a stage may bind, and
+//    for plans whose buffers exceed maxStorageBufferRange (KernelBuffers,
+//    vkfuse/vk/context.hpp).
 // Elements: float, vec4, uint, uvec4, and plane_t / plane4_t: a plane sample or
 // four of them (float32, or float16 with VKFUSE_FP16_STORAGE: common.glsl).
 #ifdef VKFUSE_ADDRESSED

@@ -1,5 +1,6 @@
-// Kernels reach their buffers through descriptor bindings, or, in plans where
-// not even one sensor fits in maxStorageBufferRange, through device addresses:
+// Kernels reach their buffers through descriptor bindings, or through device
+// addresses (KernelBuffers; and in plans where not even one sensor fits in
+// maxStorageBufferRange):
 // two builds of every kernel from one source (shaders/bindings.glsl). Both
 // must give the same bits for every method, input type and shape, including
 // shapes whose planes are not a multiple of four samples (the kernels' scalar
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <cstring>
 #include <string>
@@ -169,8 +171,31 @@ TEST_F(VulkanBufferAccess, BoundAndAddressedKernelsGiveTheSameBits) {
     for (const FusionSpec& spec : method_specs())
         for (const Shape& s : shapes)
             if (applies(spec, s, ctx()))
-                expect_same_results(run(ctx(), spec, s), run(addressed_context(), spec, s), module_ulps(ctx()),
-                                    describe(spec, s));
+                expect_same_results(run(bound_context(), spec, s), run(addressed_context(), spec, s),
+                                    module_ulps(ctx()), describe(spec, s));
+}
+
+// KernelBuffers decides how every dispatch reaches its buffers: Auto takes
+// addresses on a CPU device that has them, bindings elsewhere; a plan of
+// bound kernels writes a descriptor set per dispatch, one of addressed kernels none.
+TEST_F(VulkanBufferAccess, KernelBuffersDecideHowEveryDispatchReachesItsBuffers) {
+    SKIP_WITHOUT_DEVICE_ADDRESSES();
+    ContextOptions o = validated_options();
+    o.kernel_buffers = KernelBuffers::Addresses;
+    Context addresses(o);
+    EXPECT_EQ(addresses.kernel_buffers(), KernelBuffers::Addresses);
+    EXPECT_EQ(bound_context().kernel_buffers(), KernelBuffers::Bound);
+    if (!std::getenv("VKFUSE_KERNEL_BUFFERS")) {
+        EXPECT_EQ(ctx().kernel_buffers(),
+                  ctx().device().type == "cpu" ? KernelBuffers::Addresses : KernelBuffers::Bound);
+    }
+    for (const FusionSpec& spec : method_specs()) {
+        const PlanConfig cfg = config(spec, Shape{96, 256, 3, 3, 2, PixelType::U8});
+        Plan by_address(addresses, cfg), bound(bound_context(), cfg);
+        EXPECT_EQ(vk::PlanAccess::of(by_address).sets->written(), 0u) << to_string(spec.method);
+        EXPECT_GT(vk::PlanAccess::of(bound).sets->written(), 0u) << to_string(spec.method);
+        EXPECT_FALSE(vk::PlanAccess::of(by_address).addressed) << "one chain, not blocks, only with device_addresses_only";
+    }
 }
 
 // A plan whose buffers exceed one binding is recorded in blocks of sensors.

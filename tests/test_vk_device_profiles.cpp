@@ -127,10 +127,15 @@ TEST_F(VulkanDeviceProfiles, WithoutDeviceAddressesEveryKernelBinds) {
     Context ctx(with_profile("no-device-address"));
     EXPECT_FALSE(ctx.device().device_addresses);
     EXPECT_TRUE(mentions(ctx.adaptations(), "every kernel binds its buffers")) << joined(ctx.adaptations());
+    EXPECT_EQ(ctx.kernel_buffers(), KernelBuffers::Bound);
     ContextOptions o = with_profile("no-device-address");
     o.device_addresses_only = true;
     expect_error([&] { Context c(o); }, ctx.device().name, ErrorKind::Device,
                  "device_addresses_only asked for, but the device has no bufferDeviceAddress");
+    o.device_addresses_only = false;
+    o.kernel_buffers = KernelBuffers::Addresses;
+    expect_error([&] { Context c(o); }, ctx.device().name, ErrorKind::Device,
+                 "kernel buffers through addresses asked for, but the device has no bufferDeviceAddress");
 }
 
 // A 40-sensor QVGA K=3 skipping plan as `vkfuse run` makes one (static
@@ -228,6 +233,26 @@ TEST_F(VulkanDeviceProfiles, TheEnvironmentPicksTheArithmeticAndABadOneIsRefused
     expect_error([] { Context c(validated_options()); }, "VKFUSE_FILTER_ARITHMETIC=fast", ErrorKind::InvalidArgument,
                  "expected auto, float64 or compensated-float32");
     ::unsetenv("VKFUSE_FILTER_ARITHMETIC");
+}
+
+TEST_F(VulkanDeviceProfiles, TheEnvironmentPicksHowKernelsReachBuffersAndABadWayIsRefused) {
+    const char* before = std::getenv("VKFUSE_KERNEL_BUFFERS");
+    const std::string kept = before ? before : "";
+    ::setenv("VKFUSE_KERNEL_BUFFERS", "bound", 1);
+    {
+        Context ctx(validated_options());
+        EXPECT_EQ(ctx.kernel_buffers(), KernelBuffers::Bound);
+    }
+    ::setenv("VKFUSE_KERNEL_BUFFERS", "descriptors", 1);
+    expect_error([] { Context c(validated_options()); }, "VKFUSE_KERNEL_BUFFERS=descriptors",
+                 ErrorKind::InvalidArgument, "expected auto, bound or addresses");
+    if (before)
+        ::setenv("VKFUSE_KERNEL_BUFFERS", kept.c_str(), 1);
+    else
+        ::unsetenv("VKFUSE_KERNEL_BUFFERS");
+    EXPECT_EQ(parse_kernel_buffers("addresses"), KernelBuffers::Addresses);
+    EXPECT_EQ(parse_kernel_buffers("auto"), KernelBuffers::Auto);
+    EXPECT_EQ(parse_kernel_buffers("bindings"), std::nullopt);
 }
 
 // The context asks the device whether fma is fused before it builds a

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "vk/engine/context_impl.hpp"
 #include "vk/engine/kernel_interface.hpp"
 #include "vk/engine/shader_registry.hpp"
 #include "vkfuse/core/error.hpp"
@@ -17,10 +18,11 @@ TEST(KernelInterface, BoundVariantsDeclareTheirBuffersAndScalars) {
     const vk::KernelInterface pack = vk::reflect_kernel(vk::shader_spirv("pack"));
     EXPECT_EQ(pack.bindings, 4u);
     EXPECT_EQ(pack.push_bytes, 12u);
-    // metrics.comp: 7 buffers; 11 scalars.
+    // metrics.comp: 10 buffers (the fused planes, the background, the
+    // partials, the image, the frames it fuses from, Brovey's thresholds); 12 scalars.
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16"));
-    EXPECT_EQ(metrics.bindings, 7u);
-    EXPECT_EQ(metrics.push_bytes, 44u);
+    EXPECT_EQ(metrics.bindings, 10u);
+    EXPECT_EQ(metrics.push_bytes, 48u);
 }
 
 TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
@@ -30,7 +32,19 @@ TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
     EXPECT_EQ(pack.push_bytes, 4u * 8u + 12u);
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16_addr"));
     EXPECT_EQ(metrics.bindings, 0u);
-    EXPECT_EQ(metrics.push_bytes, 7u * 8u + 44u);
+    EXPECT_EQ(metrics.push_bytes, 10u * 8u + 48u);
+}
+
+// What the context provides is what the kernels need: no bound variant
+// declares more buffers than the shared descriptor set layout holds, and no
+// variant more push-constant bytes than its pipeline layout's range (the
+// guaranteed 128) - a kernel past either would read unbound memory.
+TEST(KernelInterface, EveryKernelFitsTheSharedLayout) {
+    for (const std::string& name : vk::shader_names()) {
+        const vk::KernelInterface k = vk::reflect_kernel(vk::shader_spirv(name));
+        EXPECT_LE(k.bindings, kMaxKernelBuffers) << name;
+        EXPECT_LE(k.push_bytes, kPushConstantBytes) << name;
+    }
 }
 
 TEST(KernelInterface, SharedPushBlocksDeclareTheirBuffersToo) {

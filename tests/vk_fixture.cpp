@@ -49,6 +49,15 @@ Context& addressed_context() {
     return ctx;
 }
 
+Context& bound_context() {
+    static Context ctx([] {
+        ContextOptions o = validated_options();
+        o.kernel_buffers = KernelBuffers::Bound;
+        return o;
+    }());
+    return ctx;
+}
+
 bool has_device_addresses() { return shared_context().device().device_addresses; }
 
 double module_ulps(const Context& context) { return context.device().type == "cpu" ? 0 : kModuleUlps; }

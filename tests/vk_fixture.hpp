@@ -40,6 +40,10 @@ std::string arithmetic_name(const Context& context);
 // Only where the device has them (a profile may take them away):
 // SKIP_WITHOUT_DEVICE_ADDRESSES() first.
 Context& addressed_context();
+// A validated context whose kernels reach their buffers through descriptor
+// bindings (KernelBuffers::Bound, every GPU's way), whatever the device's
+// default, created on first use.
+Context& bound_context();
 bool has_device_addresses();
 #define SKIP_WITHOUT_DEVICE_ADDRESSES() \
     if (!::vkfuse::test::has_device_addresses()) GTEST_SKIP() << "the device (or its profile) has no device addresses"

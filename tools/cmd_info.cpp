@@ -48,8 +48,9 @@ void print_auto_choice() {
     try {
         Context context;
         const DeviceInfo& d = context.device();
-        std::printf("--backend auto uses device [%d] %s, wavelet filters accumulating in %s\n", d.index, d.name.c_str(),
-                    to_string(context.filter_arithmetic()).data());
+        std::printf("--backend auto uses device [%d] %s, wavelet filters accumulating in %s, kernel buffers %s\n",
+                    d.index, d.name.c_str(), to_string(context.filter_arithmetic()).data(),
+                    to_string(context.kernel_buffers()) == "bound" ? "bound" : "through device addresses");
         context.splits_products();  // asks the device about fma now, so that its answer is listed
         for (const std::string& what : context.adaptations()) std::printf("  adapted: %s\n", what.c_str());
         if (const std::string cache = context.pipeline_cache(); !cache.empty())

@@ -2,14 +2,15 @@
 # The whole `vulkan` label again under each way a real GPU differs from
 # lavapipe (docs/architecture.md, "Simulated devices"): compensated float32
 # filters (the arithmetic `auto` picks on every GPU; lavapipe's default is
-# float64), then each simulated device profile. About 4 minutes a variant on an
+# float64), kernels reaching their buffers through bindings (as on every GPU;
+# lavapipe's default is device addresses), then each simulated device profile. About 4 minutes a variant on an
 # idle 2-core host. CI runs a representative subset (.ci/run); this is all of it.
 #   bash tools/vulkan_variants.sh [BUILD_DIR]   (default: build, from the quick start)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 [ -x "$build/vkfuse" ] || { echo "vulkan_variants: no build in $build (bash tools/quickstart.sh test builds one)" >&2; exit 2; }
-variants=("VKFUSE_FILTER_ARITHMETIC=compensated-float32")
+variants=("VKFUSE_FILTER_ARITHMETIC=compensated-float32" "VKFUSE_KERNEL_BUFFERS=bound")
 for profile in $("$build/vkfuse" info | sed -n 's/^device profiles: //p' | tr -d ','); do
     variants+=("VKFUSE_DEVICE_PROFILE=$profile")
 done

@@ -51,6 +51,18 @@ std::string_view to_string(FilterArithmetic);  // "auto", "float64", "compensate
 // how VKFUSE_FILTER_ARITHMETIC spells it); nullopt for any other text.
 std::optional<FilterArithmetic> parse_filter_arithmetic(std::string_view text);
 
+// How a kernel reaches the buffers a plan gives it. Every kernel is built
+// both ways from one list of its buffers (shaders/bindings.glsl), and both
+// give the same bits.
+enum class KernelBuffers {
+    Auto,       // VKFUSE_KERNEL_BUFFERS in the environment when set, else Addresses on a CPU device that
+                // has them (lavapipe, where they are the faster path), else Bound
+    Bound,      // descriptor bindings; a kernel with more buffers than a stage may bind takes addresses
+    Addresses,  // 64-bit device addresses in the push constants (needs bufferDeviceAddress)
+};
+std::string_view to_string(KernelBuffers);  // "auto", "bound", "addresses"
+std::optional<KernelBuffers> parse_kernel_buffers(std::string_view text);
+
 struct ContextOptions {
     int device_index = -1;    // -1: the best usable device (discrete > integrated > cpu)
     bool validation = false;  // enable VK_LAYER_KHRONOS_validation (error if absent)
@@ -66,8 +78,13 @@ struct ContextOptions {
     // buffers exceed what one binding may span (the device's
     // maxStorageBufferRange) runs in blocks of sensors that fit, and uses
     // device addresses only where not even one sensor fits. true: every plan
-    // uses device addresses (to test or compare that path on any plan).
+    // uses device addresses as one chain, never blocks (to test or compare
+    // that path on any plan); kernel_buffers is then Addresses.
     bool device_addresses_only = false;
+    // Which way kernels reach the buffers they are given (a plan's blocks
+    // are the same either way). Throws Error(Device) for Addresses on a device
+    // without bufferDeviceAddress.
+    KernelBuffers kernel_buffers = KernelBuffers::Auto;
     // Auto: VKFUSE_FILTER_ARITHMETIC in the environment when set (auto,
     // float64, compensated-float32: how tests run every kernel in a GPU's
     // arithmetic on lavapipe), else Float64 on CPU devices that have it.
@@ -99,7 +116,7 @@ struct ContextOptions {
 std::vector<std::string> device_profile_names();
 
 // Throws the Error(InvalidArgument) a Context would for the environment's
-// VKFUSE_DEVICE_PROFILE or VKFUSE_FILTER_ARITHMETIC, without opening a
+// VKFUSE_DEVICE_PROFILE, VKFUSE_FILTER_ARITHMETIC or VKFUSE_KERNEL_BUFFERS, without opening a
 // device: a program checks them before its first output.
 void check_vulkan_environment();
 
@@ -130,6 +147,8 @@ public:
     const DeviceInfo& device() const;
     // The filter arithmetic in use: Float64 or CompensatedFloat32, never Auto.
     FilterArithmetic filter_arithmetic() const;
+    // How kernels reach their buffers: Bound or Addresses, never Auto.
+    KernelBuffers kernel_buffers() const;
     // Compensated float32 with products' errors from Dekker's split (the
     // device's fma is not fused, or ContextOptions::split_products); false
     // under Float64.

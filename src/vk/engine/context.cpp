@@ -45,6 +45,17 @@ FilterArithmetic arithmetic_from_environment() {
     return *parsed;
 }
 
+// VKFUSE_KERNEL_BUFFERS, Auto where unset.
+KernelBuffers kernel_buffers_from_environment() {
+    const char* env = std::getenv("VKFUSE_KERNEL_BUFFERS");
+    if (!env || !*env) return KernelBuffers::Auto;
+    const auto parsed = parse_kernel_buffers(env);
+    if (!parsed)
+        throw Error(ErrorKind::InvalidArgument, "VKFUSE_KERNEL_BUFFERS=" + std::string(env).substr(0, 40) +
+                                                    ": expected auto, bound or addresses");
+    return *parsed;
+}
+
 // VKFUSE_DEVICE_PROFILE's profile, null where unset.
 const vk::DeviceProfile* profile_from_environment() {
     const char* env = std::getenv("VKFUSE_DEVICE_PROFILE");
@@ -78,6 +89,7 @@ Context::Impl::Impl(const ContextOptions& options)
             throw Error(ErrorKind::Device, info.name + ": device_addresses_only asked for, but the device has no "
                                                        "bufferDeviceAddress");
         choose_filter_arithmetic(options.filter_arithmetic);
+        choose_kernel_buffers(device_addresses_only ? KernelBuffers::Addresses : options.kernel_buffers);
         create_device();
         create_layout();
         open_pipeline_cache(options.pipeline_cache);
@@ -117,6 +129,7 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
         // addresses only where the caller's device creation enabled them.
         device_addresses = info.device_addresses && caller.buffer_device_address;
         choose_filter_arithmetic(options.filter_arithmetic);
+        choose_kernel_buffers(device_addresses_only ? KernelBuffers::Addresses : options.kernel_buffers);
         std::uint32_t n = 0;
         api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
         std::vector<VkQueueFamilyProperties> families(n);
@@ -251,6 +264,20 @@ void Context::Impl::choose_filter_arithmetic(FilterArithmetic wanted) {
     if (wanted == FilterArithmetic::Auto)
         wanted = info.float64 && info.type == "cpu" ? FilterArithmetic::Float64 : FilterArithmetic::CompensatedFloat32;
     filter_arithmetic = wanted;
+}
+
+// Auto takes addresses on a CPU device: lavapipe's bound storage buffers cost
+// more per access than its device addresses, by a fifth of a Laplacian or
+// wavelet cycle (docs/measurements.md). GPUs keep bindings, the path drivers
+// are built around.
+void Context::Impl::choose_kernel_buffers(KernelBuffers wanted) {
+    if (wanted == KernelBuffers::Auto) wanted = kernel_buffers_from_environment();
+    if (wanted == KernelBuffers::Addresses && !device_addresses)
+        throw Error(ErrorKind::Device, info.name + ": kernel buffers through addresses asked for, but the device has no "
+                                                   "bufferDeviceAddress");
+    if (wanted == KernelBuffers::Auto)
+        wanted = device_addresses && info.type == "cpu" ? KernelBuffers::Addresses : KernelBuffers::Bound;
+    kernel_buffers = wanted;
 }
 
 bool Context::Impl::products_split() {
@@ -484,8 +511,24 @@ std::string_view to_string(FilterArithmetic a) {
     return "?";
 }
 
+std::string_view to_string(KernelBuffers b) {
+    switch (b) {
+        case KernelBuffers::Auto: return "auto";
+        case KernelBuffers::Bound: return "bound";
+        case KernelBuffers::Addresses: return "addresses";
+    }
+    return "?";
+}
+
+std::optional<KernelBuffers> parse_kernel_buffers(std::string_view text) {
+    for (KernelBuffers b : {KernelBuffers::Auto, KernelBuffers::Bound, KernelBuffers::Addresses})
+        if (text == to_string(b)) return b;
+    return std::nullopt;
+}
+
 void check_vulkan_environment() {
     arithmetic_from_environment();
+    kernel_buffers_from_environment();
     profile_from_environment();
 }
 
@@ -537,6 +580,7 @@ std::optional<Context> open_backend(Backend choice, std::string_view subject, st
 
 const DeviceInfo& Context::device() const { return impl_->info; }
 FilterArithmetic Context::filter_arithmetic() const { return impl_->filter_arithmetic; }
+KernelBuffers Context::kernel_buffers() const { return impl_->kernel_buffers; }
 bool Context::splits_products() const { return impl_->products_split(); }
 std::string Context::device_profile() const { return impl_->profile ? std::string(impl_->profile->name) : ""; }
 std::vector<std::string> Context::adaptations() const { return impl_->adaptations(); }

@@ -49,6 +49,7 @@ struct Context::Impl {
     bool owns_device = true;
     bool device_addresses_only = false;  // ContextOptions::device_addresses_only
     FilterArithmetic filter_arithmetic = FilterArithmetic::CompensatedFloat32;  // resolved, never Auto
+    KernelBuffers kernel_buffers = KernelBuffers::Bound;                          // resolved, never Auto
     // Shared by all kernels: set 0 of kMaxKernelBuffers storage buffers (the
     // bound variants, shaders/bindings.glsl) and kPushConstantBytes.
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
@@ -128,6 +129,7 @@ private:
     // the chosen device's limits, memory and features.
     void apply_profile(const std::string& name);
     void choose_filter_arithmetic(FilterArithmetic wanted);
+    void choose_kernel_buffers(KernelBuffers wanted);
     void create_device();
     void create_layout();
     // The pipeline cache the options or the environment name, if any.
@@ -138,7 +140,7 @@ private:
 // Maximum push-constant bytes any vkfuse kernel uses (the guaranteed minimum).
 inline constexpr std::uint32_t kPushConstantBytes = 128;
 // Most buffers one kernel binds (shaders/bindings.glsl).
-inline constexpr std::uint32_t kMaxKernelBuffers = 8;
+inline constexpr std::uint32_t kMaxKernelBuffers = 10;
 
 namespace vk {
 

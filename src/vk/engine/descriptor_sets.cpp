@@ -50,6 +50,7 @@ VkDescriptorSet DescriptorSets::bind(std::span<const DeviceSpan> buffers) {
         writes[b].pBufferInfo = &infos[b];
     }
     api.vkUpdateDescriptorSets(ctx_.device, std::uint32_t(buffers.size()), writes, 0, nullptr);
+    ++written_;
     return set;
 }
 

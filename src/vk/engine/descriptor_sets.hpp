@@ -21,12 +21,15 @@ public:
     // (at most kMaxKernelBuffers). Each span must be non-empty and within
     // maxStorageBufferRange.
     VkDescriptorSet bind(std::span<const DeviceSpan> buffers);
+    // Sets written so far: one per bound dispatch (none where every kernel took addresses).
+    std::uint32_t written() const { return written_; }
 
 private:
     static constexpr std::uint32_t kSetsPerPool = 64;
     Context::Impl& ctx_;
     std::vector<VkDescriptorPool> pools_;
     std::uint32_t left_in_pool_ = 0;
+    std::uint32_t written_ = 0;
 };
 
 }  // namespace vkfuse::vk

@@ -117,7 +117,8 @@ void Recorder::prepare_dispatch(const std::string& shader, std::initializer_list
                                 const PushConstants& scalars, std::span<const std::uint32_t> specialization) {
     // A kernel with more buffers than a stage may bind on this device reaches
     // them by address (the context allows that only with device addresses).
-    const bool addressed = addressed_ || buffers.size() > ctx_.bound_buffers;
+    const bool addressed =
+        addressed_ || ctx_.kernel_buffers == KernelBuffers::Addresses || buffers.size() > ctx_.bound_buffers;
     const std::string kernel = kernel_name(shader, addressed);
     // Which buffers it writes: the bound variant's bindings, in the order both take them.
     const std::uint32_t written = ctx_.kernel_interface(kernel_name(shader, false)).written;
