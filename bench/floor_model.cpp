@@ -24,20 +24,16 @@ namespace {
 // floor the targets were set from, but for one change: a Laplacian
 // level's fusion and its collapse are one pass, as vkfuse runs them (the
 // fused detail never leaves registers), so the floor no longer charges the
-// detail's store and reload; and a pointwise method's metrics come from the
-// pass that fuses, as vkfuse computes them (the image's pixels never reloaded;
-// the side neighbours the gradient needs fused again from the frames, whose
-// few extra reads the floor does not charge). A pipeline that walked whole
-// 2-D filters in one pass would need fewer accesses still; the floor does not
-// assume it.
+// detail's store and reload. A pipeline that walked whole 2-D filters in one
+// pass would need fewer accesses still; the floor does not assume it.
 //
 // n_l = h_l w_l C samples of one sensor's image at level l (h_{l+1} =
 // ceil(h_l / 2)), K frames, S sensors; every count below is per sensor.
 // "frames" reads K n_0 (8-bit: a quarter of that).
 //
-//   pointwise    fuse and metrics: frames, background -> image (read back),
-//                          partial sums                          frames + n_0 + n_0
+//   pointwise    fuse:     frames -> image (read back)          frames + n_0
 //                          (channel-sum reads one channel of each frame)
+//                metrics:  image, background -> partial sums    2 n_0
 //   laplacian    base:     G_L -> R_L = base rule               K n_L + n_L
 //                per level l < L:
 //                pyrDown:  G_l -> G_{l+1}                        K n_l + K n_{l+1}
@@ -45,7 +41,7 @@ namespace {
 //                          -> R_l = rule(G_l - pyrUp G_{l+1}) + pyrUp R_{l+1}
 //                                                                K n_l + K n_{l+1} + n_{l+1} + n_l
 //                          (R_0 is the read-back image)
-//                metrics:  image, background -> partial sums    2 n_0
+//                metrics                                         2 n_0
 //   wavelet      per level l < L (periodization: the level's block is
 //                2 ceil(h_l/2) x 2 ceil(w_l/2) = 4 n_{l+1}, its row pass
 //                output h_l x 2 ceil(w_l/2), r_l):
@@ -135,9 +131,8 @@ PipelineCost wavelet(double K, int L, Level l0, double frame_scale, Wavelet w) {
     return p;
 }
 
-// One pass from the frames to the image (and the metrics, ideal_pipeline),
-// reading the fraction of each frame and doing the arithmetic per frame
-// sample the method's row gives.
+// One pass from the frames to the image, reading the fraction of each frame
+// and doing the arithmetic per frame sample the method's row gives.
 PipelineCost pointwise(double K, const vk::MethodRecorder& m, Level l0, double frame_scale) {
     const double n = l0.samples();
     PipelineCost p;
@@ -161,12 +156,10 @@ PipelineCost ideal_pipeline(const Cell& c, bool eight_bit_input) {
         case vk::FloorChain::Pyramid: p = laplacian(K, c.levels, l0, frame_scale); break;
         case vk::FloorChain::Dwt: p = wavelet(K, c.levels, l0, frame_scale, c.method.wavelet); break;
     }
-    // The metrics against the background: their own pass over the read-back
-    // image, or, for a pointwise method, in the pass that fuses it.
-    const bool own_pass = m.floor_chain != vk::FloorChain::Pointwise;
-    p.accesses += (own_pass ? 2 : 1) * l0.samples();
+    // The metric pass over the read-back image, against the background.
+    p.accesses += 2 * l0.samples();
     p.flops += kMetricFlops * l0.h * l0.w;
-    p.dispatches += own_pass ? 1 : 0;
+    p.dispatches += 1;
     p.accesses *= c.sensors;
     p.flops *= c.sensors;
     return p;

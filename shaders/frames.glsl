@@ -48,16 +48,6 @@ vec4 frame_channel_quad(uint f, uint i, uint c) {
                                  BUF(frame_words).v[first + 6u], BUF(frame_words).v[first + 9u]));
 }
 
-// Frame f's pixel 4i + 3 (last) or 4i, its channels in .xyz (C = 1: in .x):
-// one word of 8-bit frames or one vec4 of float32 ones, not a sample each.
-vec4 frame_pixel(uint f, uint i, bool last) {
-    uint C = pc.channels;
-    uint at = f * pc.pixels * C / 4u + i * C + (last && C == 3u ? 2u : 0u);
-    vec4 q = pc.is_u8 != 0u ? bytes_of(BUF(frame_words).v[at]) : BUF(frame_quads).v[at];
-    if (C == 1u) return vec4(last ? q.w : q.x);
-    return last ? vec4(q.yzw, 0.0) : vec4(q.xyz, 0.0);
-}
-
 // Channel c of pixel p of frame f.
 float frame_sample(uint f, uint p, uint c) {
     uint idx = (f * pc.pixels + p) * pc.channels + c;

@@ -11,12 +11,10 @@
 #define VKFUSE_RULE_MAX 2u
 #define VKFUSE_RULE_MIN 3u
 
-// pointwise.glsl's METHOD (a specialization constant of pointwise_fuse.comp and metrics.comp):
-// which per-pixel fusion a kernel runs.
+// pointwise_fuse.comp's METHOD (a specialization constant): which per-pixel fusion it runs.
 #define VKFUSE_POINTWISE_BROVEY 0u
 #define VKFUSE_POINTWISE_CHANNEL_SUM 1u
 #define VKFUSE_POINTWISE_MEAN 2u  // the background model's mean of K frames
-#define VKFUSE_POINTWISE_NONE 3u  // metrics.comp's default: it reads fused planes, fuses nothing
 
 // What one invocation of a kernel covers, which the C++ side sizes its
 // dispatches (and the skip tiles their scores) by.

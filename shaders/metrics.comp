@@ -15,17 +15,12 @@
 //
 // Where rows are whole quads it also writes the fused image the host reads
 // (HWC float32, frames.glsl), which spares pack.comp its pass over the planes.
-// There, for a pointwise method (METHOD, pointwise.glsl), it reads no planes:
-// it fuses each pixel from the frames as uploaded, the quad's own and its two
-// side neighbours, with pointwise_fuse's arithmetic, and so is the plan's only
-// pass. The neighbours fused twice cost K words a side; the planes they spare
-// cost a store and a load of every fused sample.
 //
 // An invocation walks ROWS rows down a strip 4 pixels wide, keeping the luma
 // of the rows above, at and below in registers: per row one plane4 per
 // channel (and per background channel) plus the two side neighbours' channels.
 #define BUFFERS(X) X(0, plane_t, img) X(1, plane4_t, img4) X(2, float, bg) X(3, vec4, bg4) X(4, vec4, partials) \
-    X(5, float, image) X(6, vec4, image_quads) X(7, uint, frame_words) X(8, vec4, frame_quads) X(9, float, thresholds)
+    X(5, float, image) X(6, vec4, image_quads)
 #include "bindings.glsl"
 layout(local_size_x = 256) in;
 layout(push_constant, std430) uniform Push {
@@ -37,21 +32,13 @@ layout(push_constant, std430) uniform Push {
     uint has_bg;
     uint want_sharpness;  // the gradient pass: a plan asked for sharpness
     uint want_contrast;   // the luma moments: a plan asked for contrast
+    uint quads;   // width % 4 == 0: rows are whole plane4 elements
     uint pixels;  // width * height
     uint write_image;  // quads only: also pack the planes into the read-back image (pack.comp's work)
     uint bg_group;     // sensors sharing a background: sensor s's is the planes of s - s % bg_group in bg
-    uint is_u8;             // fusing: the frames are 8-bit
-    uint scaled_threshold;  // fusing brovey: sensor s compares with thresholds.v[s]
 } pc;
-#define VKFUSE_READS_FRAMES
 #define VKFUSE_WRITES_IMAGES
 #include "frames.glsl"
-#define VKFUSE_POINTWISE_DEFAULT VKFUSE_POINTWISE_NONE
-#include "pointwise.glsl"
-const bool FUSES = METHOD != VKFUSE_POINTWISE_NONE;  // only where quads()
-
-// Rows are whole plane4 elements (width % 4 == 0).
-bool quads() { return pc.width % 4 == 0; }
 
 const uint WG = 256u;
 const int ROWS = VKFUSE_METRIC_ROWS;
@@ -61,7 +48,7 @@ uint plane_size() { return uint(pc.width * pc.height); }
 // Channel c of pixels x .. x+3 of row y (entries past the row's end: 0).
 vec4 quad(uint base, uint c, int x, int y) {
     uint i = base + c * plane_size() + uint(y * pc.width + x);
-    if (quads()) return vec4(BUF(img4).v[i / 4u]);
+    if (pc.quads != 0u) return vec4(BUF(img4).v[i / 4u]);
     vec4 q = vec4(0.0);
     for (int p = 0; p < 4 && x + p < pc.width; ++p) q[p] = float(BUF(img).v[i + uint(p)]);
     return q;
@@ -69,7 +56,7 @@ vec4 quad(uint base, uint c, int x, int y) {
 
 vec4 bg_quad(uint base, uint c, int x, int y) {
     uint i = base + c * plane_size() + uint(y * pc.width + x);
-    if (quads()) return BUF(bg4).v[i / 4u];
+    if (pc.quads != 0u) return BUF(bg4).v[i / 4u];
     vec4 q = vec4(0.0);
     for (int p = 0; p < 4 && x + p < pc.width; ++p) q[p] = BUF(bg).v[i + uint(p)];
     return q;
@@ -84,22 +71,6 @@ float luma_at(uint base, int x, int y) {
 
 vec4 luma_quad(vec4 r, vec4 g, vec4 b) {
     return pc.channels == 1u ? r : 0.299 * r + 0.587 * g + 0.114 * b;
-}
-
-// Sensor s's pixels x .. x+3 of row y (quads only): fused here, or read from its planes.
-Quad row_quad(uint s, uint base, int x, int y, float threshold) {
-    if (FUSES) return fuse_quad(s, uint(y * pc.width + x) / 4u, threshold);
-    vec4 r = quad(base, 0u, x, y);
-    if (pc.channels == 1u) return Quad(r, r, r);
-    return Quad(r, quad(base, 1u, x, y), quad(base, 2u, x, y));
-}
-
-// The luma of sensor s's pixel x of row y: fused here (x the first or last
-// pixel of a quad), or read from its planes.
-float pixel_luma(uint s, uint base, int x, int y, float threshold) {
-    if (!FUSES) return luma_at(base, x, y);
-    vec4 p = fuse_pixel(s, uint(y * pc.width + x) / 4u, x % 4 == 3, threshold);
-    return pc.channels == 1u ? p.x : 0.299 * p.x + 0.587 * p.y + 0.114 * p.z;
 }
 
 // numpy.gradient along one axis from the samples before, at and after pos:
@@ -162,18 +133,16 @@ void main() {
     uint item = g * WG + gl_LocalInvocationIndex;
     int x = int(item % quads_per_row) * 4;
     int top = int(item / quads_per_row) * ROWS;
-    float threshold = brovey_threshold(s);
-    float y0 = pixel_luma(s, base, 0, 0, threshold);
+    float y0 = luma_at(base, 0, 0);
     precise vec2 sums = vec2(0.0), comp = vec2(0.0);  // (gradient magnitude, |I - B|)
     Moments m = Moments(0.0, 0.0, 0.0);
     if (top < pc.height) {
-        Quad q = row_quad(s, base, x, top, threshold);
-        vec4 r = q.c0, gr = q.c1, b = q.c2;
+        vec4 r = quad(base, 0u, x, top), gr = C == 3u ? quad(base, 1u, x, top) : r, b = C == 3u ? quad(base, 2u, x, top) : r;
         vec4 at = luma_quad(r, gr, b);
         vec4 above = at;
         if (top > 0) {
-            Quad q1 = row_quad(s, base, x, top - 1, threshold);
-            above = luma_quad(q1.c0, q1.c1, q1.c2);
+            vec4 r1 = quad(base, 0u, x, top - 1);
+            above = C == 3u ? luma_quad(r1, quad(base, 1u, x, top - 1), quad(base, 2u, x, top - 1)) : r1;
         }
         for (int row = 0; row < ROWS; ++row) {
             int y = top + row;
@@ -181,16 +150,15 @@ void main() {
             if (pc.write_image != 0u) store_image_quad(s, uint(y * pc.width + x) / 4u, Quad(r, gr, b));
             vec4 below = at, nr = r, ng = gr, nb = b;
             if (y + 1 < pc.height) {
-                Quad n = row_quad(s, base, x, y + 1, threshold);
-                nr = n.c0;
-                ng = n.c1;
-                nb = n.c2;
+                nr = quad(base, 0u, x, y + 1);
+                ng = C == 3u ? quad(base, 1u, x, y + 1) : nr;
+                nb = C == 3u ? quad(base, 2u, x, y + 1) : nr;
                 below = luma_quad(nr, ng, nb);
             }
             float left = 0.0, right = 0.0;
             if (pc.want_sharpness != 0u) {
-                left = x > 0 ? pixel_luma(s, base, x - 1, y, threshold) : 0.0;
-                right = x + 4 < pc.width ? pixel_luma(s, base, x + 4, y, threshold) : 0.0;
+                left = x > 0 ? luma_at(base, x - 1, y) : 0.0;
+                right = x + 4 < pc.width ? luma_at(base, x + 4, y) : 0.0;
             }
             vec4 d = vec4(0.0);
             if (pc.has_bg != 0u) {

@@ -18,11 +18,10 @@ TEST(KernelInterface, BoundVariantsDeclareTheirBuffersAndScalars) {
     const vk::KernelInterface pack = vk::reflect_kernel(vk::shader_spirv("pack"));
     EXPECT_EQ(pack.bindings, 4u);
     EXPECT_EQ(pack.push_bytes, 12u);
-    // metrics.comp: 10 buffers (the fused planes, the background, the
-    // partials, the image, the frames it fuses from, Brovey's thresholds); 12 scalars.
+    // metrics.comp: 7 buffers; 11 scalars.
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16"));
-    EXPECT_EQ(metrics.bindings, 10u);
-    EXPECT_EQ(metrics.push_bytes, 48u);
+    EXPECT_EQ(metrics.bindings, 7u);
+    EXPECT_EQ(metrics.push_bytes, 44u);
 }
 
 TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
@@ -32,7 +31,7 @@ TEST(KernelInterface, AddressedVariantsCarryTheBuffersAsAddresses) {
     EXPECT_EQ(pack.push_bytes, 4u * 8u + 12u);
     const vk::KernelInterface metrics = vk::reflect_kernel(vk::shader_spirv("metrics_fp16_addr"));
     EXPECT_EQ(metrics.bindings, 0u);
-    EXPECT_EQ(metrics.push_bytes, 10u * 8u + 48u);
+    EXPECT_EQ(metrics.push_bytes, 7u * 8u + 44u);
 }
 
 // What the context provides is what the kernels need: no bound variant

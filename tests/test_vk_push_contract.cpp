@@ -90,7 +90,7 @@ TEST_F(PushContract, AKernelWhosePushFieldsMovedIsRefusedNamingTheField) {
     PlanConfig cfg;
     cfg.fusion = spec_of(Method::Brovey);
     cfg.height = 24;
-    cfg.width = 30;  // rows not of whole quads: the metric pass does not fuse, pointwise_fuse does
+    cfg.width = 32;
     cfg.frames = 3;
     try {
         Plan plan(context, cfg);

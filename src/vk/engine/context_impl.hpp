@@ -140,7 +140,7 @@ private:
 // Maximum push-constant bytes any vkfuse kernel uses (the guaranteed minimum).
 inline constexpr std::uint32_t kPushConstantBytes = 128;
 // Most buffers one kernel binds (shaders/bindings.glsl).
-inline constexpr std::uint32_t kMaxKernelBuffers = 10;
+inline constexpr std::uint32_t kMaxKernelBuffers = 8;
 
 namespace vk {
 

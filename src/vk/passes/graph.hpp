@@ -183,15 +183,6 @@ std::uint32_t metric_groups(const PlanConfig& cfg);
 // `background` (1: its own; a cached fusion's group shares its first's).
 void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
                     std::optional<DeviceSpan> image = std::nullopt, std::uint32_t background_group = 1);
-// Whether a pointwise method's plan fuses in its metric pass (where rows are
-// whole quads): record_pointwise_metrics instead of record_pointwise followed
-// by record_metrics, one pass and no fused planes.
-bool metrics_fuse_pointwise(const PlanConfig& cfg);
-// The metric pass fusing each pixel from the frames as uploaded with the
-// pointwise method `kernel` (record_pointwise's), writing the fused image into
-// `image` when given; `stage` the name --profile reports.
-void record_pointwise_metrics(GraphBuilder& g, DeviceSpan frames, std::uint32_t kernel, VkDeviceAddress background,
-                              DeviceSpan partials, std::optional<DeviceSpan> image, const std::string& stage);
 // One sensor's metrics from its metric_groups partials, summed in double;
 // each metric times 2^exponent (the scale its frames went to the device at).
 // Partials holding a NaN or Inf throw as check_device_results does, naming

@@ -25,30 +25,15 @@ std::uint32_t metric_groups(const PlanConfig& cfg) { return groups(metric_items(
 
 bool metrics_write_image(const PlanConfig& cfg) { return !cfg.metrics.empty() && cfg.width % 4 == 0; }
 
-namespace {
-
-// The metric pass over `fused` planes, or, with `fusing`, over the pixels it
-// fuses itself from the frames (metrics.comp's METHOD).
-struct Fusing {
-    DeviceSpan frames;
-    std::uint32_t kernel;  // VKFUSE_POINTWISE_*
-};
-
-void record_metric_pass(GraphBuilder& g, VkDeviceAddress fused, std::optional<Fusing> fusing,
-                        VkDeviceAddress background, DeviceSpan partials, std::optional<DeviceSpan> image,
-                        std::uint32_t background_group, const std::string& stage) {
+void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
+                    std::optional<DeviceSpan> image, std::uint32_t background_group) {
     const std::uint32_t wgs = metric_groups(g.cfg);
     if (g.rec.local_size("metrics")[0] != kGroupSize)
         throw Error(ErrorKind::Device, "internal: metrics.comp's local size is not the " + std::to_string(kGroupSize) +
                                            " its partials are sized by");
-    // Buffers a dispatch does not read are bound to one it does.
-    const DeviceSpan img = fused ? g.span(fused) : partials, bg = background ? g.span(background) : img;
+    const DeviceSpan img = g.span(fused), bg = background ? g.span(background) : img;
     const DeviceSpan out = image ? *image : partials;
-    const DeviceSpan frames = fusing ? fusing->frames : img;
-    const DeviceSpan thresholds = fusing && g.brovey_thresholds ? g.span(g.brovey_thresholds) : img;
-    const std::array<std::uint32_t, 2> specialization{fusing ? fusing->kernel : std::uint32_t(VKFUSE_POINTWISE_NONE),
-                                                      fusing ? std::uint32_t(g.cfg.frames) : 1u};  // METHOD and FRAMES
-    g.rec.dispatch("metrics", {img, img, bg, bg, partials, out, out, frames, frames, thresholds},
+    g.rec.dispatch("metrics", {img, img, bg, bg, partials, out, out},
                    PushConstants()
                        .i32("width", g.cfg.width)
                        .i32("height", g.cfg.height)
@@ -57,27 +42,12 @@ void record_metric_pass(GraphBuilder& g, VkDeviceAddress fused, std::optional<Fu
                        .u32("has_bg", background ? 1 : 0)
                        .u32("want_sharpness", g.cfg.metrics.has(Metric::Sharpness))
                        .u32("want_contrast", g.cfg.metrics.has(Metric::Contrast))
+                       .u32("quads", g.cfg.width % 4 == 0)
                        .u32("pixels", std::uint32_t(g.cfg.width) * std::uint32_t(g.cfg.height))
                        .u32("write_image", image.has_value())
-                       .u32("bg_group", background_group)
-                       .u32("is_u8", g.cfg.input == PixelType::U8)
-                       .u32("scaled_threshold", fusing && g.brovey_thresholds ? 1 : 0),
-                   Recorder::LinearWork{metric_items(g.cfg), std::uint32_t(g.cfg.sensors)}, specialization);
-    g.rec.mark(stage);
-}
-
-}  // namespace
-
-void record_metrics(GraphBuilder& g, VkDeviceAddress fused, VkDeviceAddress background, DeviceSpan partials,
-                    std::optional<DeviceSpan> image, std::uint32_t background_group) {
-    record_metric_pass(g, fused, std::nullopt, background, partials, image, background_group, "metrics");
-}
-
-bool metrics_fuse_pointwise(const PlanConfig& cfg) { return metrics_write_image(cfg); }
-
-void record_pointwise_metrics(GraphBuilder& g, DeviceSpan frames, std::uint32_t kernel, VkDeviceAddress background,
-                              DeviceSpan partials, std::optional<DeviceSpan> image, const std::string& stage) {
-    record_metric_pass(g, 0, Fusing{frames, kernel}, background, partials, image, 1, stage);
+                       .u32("bg_group", background_group),
+                   Recorder::LinearWork{metric_items(g.cfg), std::uint32_t(g.cfg.sensors)});
+    g.rec.mark("metrics");
 }
 
 // float16 planes hold magnitudes up to 65504; beyond that a plane sample

@@ -233,51 +233,38 @@ void Plan::Impl::record_sensors(vk::Recorder& rec, std::uint32_t from, std::uint
     const std::uint32_t pixels = std::uint32_t(cfg.width) * std::uint32_t(cfg.height);
     const bool quads = pixels % 4 == 0;  // the kernels' four-pixel paths
     const std::optional<vk::DeviceSpan> wanted_image = cfg.want_fused ? std::optional(image) : std::nullopt;
-    // A pointwise method (and the background mean) fuses in one kernel from
-    // the frames; where the metric pass can fuse its pixels itself, that pass
-    // is the plan's only one (no fused planes), otherwise pointwise_fuse
-    // writes the planes and the image and the metric pass reads the planes.
-    std::optional<std::uint32_t> pointwise_kernel;
-    std::string pointwise_stage;
-    if (kind == vk::PlanKind::BackgroundMean) {
-        pointwise_kernel = vk::kPointwiseMean;
-        pointwise_stage = "mean";
-    } else if (kind == vk::PlanKind::Fuse && vk::method_recorder(cfg.fusion.method).shape == vk::GraphShape::Pointwise) {
-        pointwise_kernel = vk::method_recorder(cfg.fusion.method).pointwise_kernel;
-        pointwise_stage = to_string(cfg.fusion.method);
-    }
-    const VkDeviceAddress bg_address = background.handle() ? backgrounds.address() : 0;
-    if (pointwise_kernel && vk::metrics_fuse_pointwise(cfg)) {
-        vk::record_pointwise_metrics(g, frames, *pointwise_kernel, bg_address, partials, wanted_image,
-                                     pointwise_stage + "_metrics");
-        return;
-    }
     VkDeviceAddress fused_planes = 0;
+    bool pointwise = false;  // the fusion kernel wrote the image itself
     vk::FrameSource input(g, frames);
     switch (kind) {
         case vk::PlanKind::Fuse: {
             const vk::MethodRecorder& method = vk::method_recorder(cfg.fusion.method);
+            pointwise = method.shape == vk::GraphShape::Pointwise;
             fused_planes = method.record(g, input, wanted_image, method.pointwise_kernel);
             break;
         }
         case vk::PlanKind::Score: fused_planes = input.planes(); break;  // the frame is its own result
         case vk::PlanKind::BackgroundMean:
+            pointwise = true;
             fused_planes = record_pointwise(g, frames, wanted_image, vk::kPointwiseMean, "mean");
             break;
     }
-    if (!pointwise_kernel && cfg.want_fused && !vk::metrics_write_image(cfg)) {
-        const vk::DeviceSpan fused = g.span(fused_planes);
-        rec.dispatch("pack", {fused, fused, image, image},
-                     vk::PushConstants()
-                         .u32("pixels", pixels)
-                         .u32("channels", std::uint32_t(cfg.channels))
-                         .u32("quads", quads),
-                     vk::Recorder::LinearWork{quads ? pixels / 4 : pixels, count});
-        rec.mark("pack");
+    if (!pointwise) {
+        if (cfg.want_fused && !vk::metrics_write_image(cfg)) {
+            const vk::DeviceSpan fused = g.span(fused_planes);
+            rec.dispatch("pack", {fused, fused, image, image},
+                         vk::PushConstants()
+                             .u32("pixels", pixels)
+                             .u32("channels", std::uint32_t(cfg.channels))
+                             .u32("quads", quads),
+                         vk::Recorder::LinearWork{quads ? pixels / 4 : pixels, count});
+            rec.mark("pack");
+        }
     }
-    const bool packs = cfg.want_fused && !pointwise_kernel && vk::metrics_write_image(cfg);
+    const bool packs = cfg.want_fused && !pointwise && vk::metrics_write_image(cfg);
     if (!cfg.metrics.empty())
-        record_metrics(g, fused_planes, bg_address, partials, packs ? std::optional(image) : std::nullopt);
+        record_metrics(g, fused_planes, background.handle() ? backgrounds.address() : 0, partials,
+                       packs ? std::optional(image) : std::nullopt);
 }
 
 void Plan::Impl::wait_device() {
