@@ -266,10 +266,10 @@ void Context::Impl::choose_filter_arithmetic(FilterArithmetic wanted) {
     filter_arithmetic = wanted;
 }
 
-// Auto takes addresses on a CPU device: lavapipe's bound storage buffers cost
-// more per access than its device addresses, by a fifth of a Laplacian or
-// wavelet cycle (docs/measurements.md). GPUs keep bindings, the path drivers
-// are built around.
+// Auto takes addresses on a CPU device: on lavapipe the same kernels ran a
+// fifth to a quarter faster through device addresses than bound, although a
+// plain copy costs the two alike (docs/measurements.md). GPUs keep bindings,
+// the path their drivers are built around.
 void Context::Impl::choose_kernel_buffers(KernelBuffers wanted) {
     if (wanted == KernelBuffers::Auto) wanted = kernel_buffers_from_environment();
     if (wanted == KernelBuffers::Addresses && !device_addresses)
