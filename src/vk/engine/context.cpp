@@ -34,26 +34,26 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagB
     return VK_FALSE;
 }
 
-// VKFUSE_FILTER_ARITHMETIC, Auto where unset.
-FilterArithmetic arithmetic_from_environment() {
-    const char* env = std::getenv("VKFUSE_FILTER_ARITHMETIC");
-    if (!env || !*env) return FilterArithmetic::Auto;
-    const auto parsed = parse_filter_arithmetic(env);
+// The choice an environment variable names, T::Auto where it is unset or
+// empty; any other text is refused in one line naming the variable.
+template <class T>
+T choice_from_environment(const char* variable, std::optional<T> (*parse)(std::string_view), const char* expected) {
+    const char* env = std::getenv(variable);
+    if (!env || !*env) return T::Auto;
+    const std::optional<T> parsed = parse(env);
     if (!parsed)
-        throw Error(ErrorKind::InvalidArgument, "VKFUSE_FILTER_ARITHMETIC=" + std::string(env).substr(0, 40) +
-                                                    ": expected auto, float64 or compensated-float32");
+        throw Error(ErrorKind::InvalidArgument,
+                    std::string(variable) + "=" + std::string(env).substr(0, 40) + ": expected " + expected);
     return *parsed;
 }
 
-// VKFUSE_KERNEL_BUFFERS, Auto where unset.
+FilterArithmetic arithmetic_from_environment() {
+    return choice_from_environment("VKFUSE_FILTER_ARITHMETIC", parse_filter_arithmetic,
+                                   "auto, float64 or compensated-float32");
+}
+
 KernelBuffers kernel_buffers_from_environment() {
-    const char* env = std::getenv("VKFUSE_KERNEL_BUFFERS");
-    if (!env || !*env) return KernelBuffers::Auto;
-    const auto parsed = parse_kernel_buffers(env);
-    if (!parsed)
-        throw Error(ErrorKind::InvalidArgument, "VKFUSE_KERNEL_BUFFERS=" + std::string(env).substr(0, 40) +
-                                                    ": expected auto, bound or addresses");
-    return *parsed;
+    return choice_from_environment("VKFUSE_KERNEL_BUFFERS", parse_kernel_buffers, "auto, bound or addresses");
 }
 
 // VKFUSE_DEVICE_PROFILE's profile, null where unset.
@@ -89,7 +89,7 @@ Context::Impl::Impl(const ContextOptions& options)
             throw Error(ErrorKind::Device, info.name + ": device_addresses_only asked for, but the device has no "
                                                        "bufferDeviceAddress");
         choose_filter_arithmetic(options.filter_arithmetic);
-        choose_kernel_buffers(device_addresses_only ? KernelBuffers::Addresses : options.kernel_buffers);
+        choose_kernel_buffers(options.kernel_buffers);
         create_device();
         create_layout();
         open_pipeline_cache(options.pipeline_cache);
@@ -129,7 +129,7 @@ Context::Impl::Impl(const CallerDevice& caller, const ContextOptions& options)
         // addresses only where the caller's device creation enabled them.
         device_addresses = info.device_addresses && caller.buffer_device_address;
         choose_filter_arithmetic(options.filter_arithmetic);
-        choose_kernel_buffers(device_addresses_only ? KernelBuffers::Addresses : options.kernel_buffers);
+        choose_kernel_buffers(options.kernel_buffers);
         std::uint32_t n = 0;
         api->vkGetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
         std::vector<VkQueueFamilyProperties> families(n);
@@ -269,8 +269,10 @@ void Context::Impl::choose_filter_arithmetic(FilterArithmetic wanted) {
 // Auto takes addresses on a CPU device: on lavapipe the same kernels ran a
 // fifth to a quarter faster through device addresses than bound, although a
 // plain copy costs the two alike (docs/measurements.md). GPUs keep bindings,
-// the path their drivers are built around.
+// the path their drivers are built around. device_addresses_only implies
+// Addresses, whatever was asked.
 void Context::Impl::choose_kernel_buffers(KernelBuffers wanted) {
+    if (device_addresses_only) wanted = KernelBuffers::Addresses;
     if (wanted == KernelBuffers::Auto) wanted = kernel_buffers_from_environment();
     if (wanted == KernelBuffers::Addresses && !device_addresses)
         throw Error(ErrorKind::Device, info.name + ": kernel buffers through addresses asked for, but the device has no "
