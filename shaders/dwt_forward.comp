@@ -14,13 +14,12 @@
 // for o < N/2; low goes to positions [0, N/2), high to [N/2, N).
 // An invocation computes BLOCK consecutive (low, high) pairs from one window
 // of 2 BLOCK + F - 2 samples.
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 
 void main() {
     uint plane = gl_WorkGroupID.z;
-    int block = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
-    int line = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
-    if (!sparse_place(plane, line, block, pc.lines, (pc.half_len + BLOCK - 1) / BLOCK)) return;
+    int line, block;
+    if (!line_item(plane, pc.lines_fastest != 0u, pc.lines, (pc.half_len + BLOCK - 1) / BLOCK, line, block)) return;
     int o0 = block * BLOCK;
     float win[WINDOW];
     [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)

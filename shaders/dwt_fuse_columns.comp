@@ -12,7 +12,7 @@
 // fused block is stored, plus what the next level reads: each frame's
 // approximation (low rows of the low columns). Against a column pass then a
 // fusion pass, K planes of coefficients are neither written nor read back.
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 // src: the row pass's output, plane (s*K + k)*C + c; approx: each frame's
 // coefficient block, of which only the approximation is written; fused: the
 // fused block, plane s*C + c.
@@ -41,9 +41,9 @@ layout(push_constant, std430) uniform Push {
 layout(constant_id = VKFUSE_FILTER_CONSTANTS) const uint FRAMES = 1u;
 
 void main() {
-    int x = int(gl_GlobalInvocationID.x), block = int(gl_GlobalInvocationID.y);
+    int x, block;
     uint z = gl_WorkGroupID.z;  // s * C + c
-    if (!sparse_place(z, x, block, pc.columns, (pc.half_len + BLOCK - 1) / BLOCK)) return;
+    if (!line_item(z, true, pc.columns, (pc.half_len + BLOCK - 1) / BLOCK, x, block)) return;
     int o0 = block * BLOCK;
     uint s = z / pc.channels, c = z % pc.channels;
     bool low_columns = x < pc.approx_w;

@@ -11,7 +11,7 @@
 // blocks whose rows are whole quads and whose low columns (approx_w) are too,
 // so that a quad is all low or all high columns, and for every column (no
 // tile-sparse region: a region's lines need not start on a quad).
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 #define BUFFERS(X) X(0, plane4_t, src4) X(1, plane4_t, approx4) X(2, plane4_t, fused4)
 #include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
@@ -31,9 +31,11 @@ layout(push_constant, std430) uniform Push {
 layout(constant_id = VKFUSE_FILTER_CONSTANTS) const uint FRAMES = 1u;  // as dwt_fuse_columns.comp
 
 void main() {
-    int x = int(gl_GlobalInvocationID.x) * 4, block = int(gl_GlobalInvocationID.y);
+    // A 1-D grid of column quads x blocks, quads the faster (as sparse.glsl's line_item).
+    uint quads = uint(pc.columns) / 4u, i = linear_index(uint(VKFUSE_LINE_GROUP));
+    int x = int(i % quads) * 4, block = int(i / quads);
     uint z = gl_WorkGroupID.z;  // s * C + c
-    if (x >= pc.columns || block >= (pc.half_len + BLOCK - 1) / BLOCK) return;
+    if (block >= (pc.half_len + BLOCK - 1) / BLOCK) return;
     int o0 = block * BLOCK;
     uint s = z / pc.channels, c = z % pc.channels;
     bool low_columns = x < pc.approx_w;

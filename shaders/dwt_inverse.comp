@@ -16,14 +16,13 @@
 // Only the first n of the 2M samples are written: pywt's crop for odd sizes.
 // An invocation computes the 2 BLOCK samples of BLOCK consecutive o from one
 // window of BLOCK + Hf - 1 coefficients of each half.
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 
 void main() {
     uint plane = gl_WorkGroupID.z;
-    int block = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
-    int line = int(pc.x_is_line != 0u ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
+    int line, block;
     const int M = pc.half_len;
-    if (!sparse_place(plane, line, block, pc.lines, (M + BLOCK - 1) / BLOCK)) return;
+    if (!line_item(plane, pc.lines_fastest != 0u, pc.lines, (M + BLOCK - 1) / BLOCK, line, block)) return;
     int o0 = block * BLOCK;
     const int Hf = F / 2;
     const int s = (Hf % 2 == 0) ? 1 : 0;

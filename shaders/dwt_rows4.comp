@@ -11,7 +11,7 @@
 // periodic as dwt_forward.
 #define BUFFERS(X) X(0, plane_t, src) X(1, plane4_t, src4) X(2, plane4_t, dst4) X(3, uint, regions)
 #include "bindings.glsl"
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
     int n;            // samples per row
@@ -28,9 +28,9 @@ layout(push_constant, std430) uniform Push {
 #include "sparse.glsl"
 
 void main() {
-    int block = int(gl_GlobalInvocationID.x), line = int(gl_GlobalInvocationID.y);
+    int line, block;
     uint plane = gl_WorkGroupID.z;
-    if (!sparse_place(plane, line, block, pc.lines, pc.half_len / PAIRS)) return;
+    if (!line_item(plane, false, pc.lines, pc.half_len / PAIRS, line, block)) return;
     int o0 = block * PAIRS;
     uint row = plane * pc.src_plane_stride + uint(line * pc.src_row_stride);
     int base = window_base(o0);

@@ -12,7 +12,7 @@
 // Rows of whole quads (width % 4 == 0) whose half length is a multiple of 8.
 #define BUFFERS(X) X(0, uint, frame_words) X(1, vec4, frame_quads) X(2, plane4_t, dst4) X(3, uint, regions)
 #include "bindings.glsl"
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
     uint pixels;      // width * height
@@ -32,9 +32,9 @@ layout(push_constant, std430) uniform Push {
 #include "sparse.glsl"
 
 void main() {
-    int block = int(gl_GlobalInvocationID.x), line = int(gl_GlobalInvocationID.y);
+    int line, block;
     uint f = gl_WorkGroupID.z;  // frame s * K + k
-    if (!sparse_place(f, line, block, pc.lines, pc.half_len / PAIRS)) return;
+    if (!line_item(f, false, pc.lines, pc.half_len / PAIRS, line, block)) return;
     int o0 = block * PAIRS;
     uint C = pc.channels, row = uint(line * pc.n);  // the row's first pixel
     int base = window_base(o0);

@@ -17,7 +17,7 @@ layout(push_constant, std430) uniform Push {
     int dst_line_stride;
     int dst_elem_stride;
     uint dst_plane_stride;
-    uint x_is_line;   // 1: invocation x walks lines (column passes, for coalescing)
+    uint lines_fastest;  // 1: neighbouring invocations take neighbouring lines (column passes, for coalescing)
     uint region;      // sparse.glsl (convolutions only)
     uint slot_planes; // planes per sensor
 } pc;

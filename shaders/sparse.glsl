@@ -3,7 +3,7 @@
 // what its region record names. Record (8 uints from regions[region - 1 + 8 *
 // slot]): line start, line count, block start, block count, half, sensor,
 // full, 0. Lines and blocks are circular ranges (they wrap past the edge, as
-// the periodic taps do): invocation (line i, block b) takes line
+// the periodic taps do): item (line i, block b) takes line
 // (start + i) mod lines and block (start + b) mod blocks. With half != 0 the
 // lines come in two halves of `half` (a band's low and high columns), each
 // taking the range. region 0: every line and block, as recorded.
@@ -16,22 +16,40 @@ uint sparse_record(uint z) { return pc.region - 1u + SPARSE_RECORD * (z / pc.slo
 // runs integer division a lane at a time.
 int sparse_wrap(int start, int i, int n) { return start + i >= n ? start + i - n : start + i; }
 
-// Maps an invocation's (line, block) to the ones it computes; false: none.
-bool sparse_place(uint z, inout int line, inout int block, int lines, int blocks) {
-    if (pc.region == 0u) return line < lines && block < blocks;
-    uint at = sparse_record(z);
-    int line_count = int(BUF(regions).v[at + 1u]), block_count = int(BUF(regions).v[at + 3u]);
-    int half_lines = int(BUF(regions).v[at + 4u]);
-    if (block >= block_count) return false;
+// The (line, block) an invocation of a line kernel computes; false: none.
+// Line kernels are 1-D (VKFUSE_LINE_GROUP invocations a group, dispatched as
+// grid_1d() lays them out): item i of a grid of lines x blocks, lines the
+// faster axis where lines_fastest (column passes: neighbours read adjacent
+// columns). A 1-D grid wastes no lane on a level whose blocks or lines are
+// not a multiple of a 2-D group's side: lavapipe runs a masked lane at full
+// cost, and the coarse levels' lines are a few blocks long. With a region
+// the grid is the record's lines x blocks (two halves of lines where half !=
+// 0), mapped onto the whole line as the record says.
+bool line_item(uint z, bool lines_fastest, int lines, int blocks, out int line, out int block) {
+    uint i = linear_index(uint(VKFUSE_LINE_GROUP));
+    int line_count = lines, block_count = blocks, half_lines = 0;
+    uint at = 0u;
+    if (pc.region != 0u) {
+        at = sparse_record(z);
+        half_lines = int(BUF(regions).v[at + 4u]);
+        line_count = int(BUF(regions).v[at + 1u]) * (half_lines != 0 ? 2 : 1);
+        block_count = int(BUF(regions).v[at + 3u]);
+    }
+    uint fast = uint(lines_fastest ? line_count : block_count);
+    if (fast == 0u) return false;
+    int a = int(i % fast), b = int(i / fast);
+    line = lines_fastest ? a : b;
+    block = lines_fastest ? b : a;
+    if (line >= line_count || block >= block_count) return false;
+    if (pc.region == 0u) return true;
     block = sparse_wrap(int(BUF(regions).v[at + 2u]), block, blocks);
     int start = int(BUF(regions).v[at]);
     if (half_lines == 0) {
-        if (line >= line_count) return false;
         line = sparse_wrap(start, line, lines);
         return true;
     }
-    if (line >= 2 * line_count) return false;
-    int upper = line >= line_count ? 1 : 0;
-    line = upper * half_lines + sparse_wrap(start, line - upper * line_count, half_lines);
+    int half_count = line_count / 2;
+    int upper = line >= half_count ? 1 : 0;
+    line = upper * half_lines + sparse_wrap(start, line - upper * half_count, half_lines);
     return true;
 }

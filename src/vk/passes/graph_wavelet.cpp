@@ -278,9 +278,8 @@ private:
     Region region(SparsePass pass, int level, int block) {
         if (!g_.sparse) return {};
         // Column passes walk lines along x (dispatch_line, fuse_columns).
-        const bool x_is_line = pass == SparsePass::ForwardCols || pass == SparsePass::InverseCols;
         const std::uint32_t next = std::uint32_t(g_.rec.sensor_dispatches().size());
-        return {g_.sparse->declare({pass, level, block, next, x_is_line}), g_.sparse->regions()};
+        return {g_.sparse->declare({pass, level, block, next}), g_.sparse->regions()};
     }
 
     // Outside the rectangle each sparsely fused slot computed, its fused background.
@@ -313,7 +312,7 @@ private:
             .i32("dst_line_stride", d_line)
             .i32("dst_elem_stride", d_elem)
             .u32("dst_plane_stride", dst.plane_stride)
-            .u32("x_is_line", ls.along_rows ? 0 : 1);
+            .u32("lines_fastest", ls.along_rows ? 0 : 1);
     }
 
     // Lifting: an invocation per line. Convolution: per line, an invocation
@@ -327,12 +326,9 @@ private:
         const std::uint32_t blocks = groups(std::uint32_t(ls.half_len), kConvBlock);
         if (!periodization_) {
             g_.rec.dispatch(lift, {in, out, scheme, records}, push, Recorder::Work{std::uint32_t(ls.lines), 1, planes});
-        } else if (ls.along_rows) {
-            g_.rec.dispatch(conv, {in, out, scheme, records}, push, Recorder::Work{blocks, std::uint32_t(ls.lines), planes},
-                            taps_);
         } else {
-            g_.rec.dispatch(conv, {in, out, scheme, records}, push, Recorder::Work{std::uint32_t(ls.lines), blocks, planes},
-                            taps_);
+            g_.rec.dispatch(conv, {in, out, scheme, records}, push,
+                            Recorder::LinearWork{std::uint64_t(blocks) * std::uint64_t(ls.lines), planes}, taps_);
         }
     }
 
@@ -353,8 +349,8 @@ private:
                             .u32("dst_plane_stride", dst.plane_stride)
                             .u32("region", r.push)
                             .u32("slot_planes", std::uint32_t(g_.cfg.frames)),
-                        Recorder::Work{std::uint32_t(ls.half_len / kRowPairs), std::uint32_t(ls.lines),
-                                       std::uint32_t(g_.cfg.sensors * g_.cfg.frames)},
+                        Recorder::LinearWork{std::uint64_t(ls.half_len / kRowPairs) * std::uint64_t(ls.lines),
+                                             std::uint32_t(g_.cfg.sensors * g_.cfg.frames)},
                         taps_);
     }
 
@@ -378,7 +374,8 @@ private:
                                 .u32("dst_plane_stride", dst.plane_stride)
                                 .u32("region", r.push)
                                 .u32("slot_planes", planes / std::uint32_t(g_.cfg.sensors)),
-                            Recorder::Work{std::uint32_t(ls.half_len / kRowPairs), std::uint32_t(ls.lines), planes}, taps_);
+                            Recorder::LinearWork{std::uint64_t(ls.half_len / kRowPairs) * std::uint64_t(ls.lines), planes},
+                            taps_);
             return;
         }
         dispatch_line("dwt_forward", "lift_forward", src, dst, ls, planes, r);
@@ -412,12 +409,12 @@ private:
         // computed and a quad holds only low or only high columns.
         if (r.push == 0 && s.bw % 4 == 0 && s.cw % 4 == 0) {
             g_.rec.dispatch("dwt_fuse_columns4", {src, g_.span(coeffs.addr), g_.span(out.addr)}, scalars,
-                            Recorder::Work{std::uint32_t(s.bw / 4), blocks, g_.planes_out()}, constants);
+                            Recorder::LinearWork{std::uint64_t(s.bw / 4) * blocks, g_.planes_out()}, constants);
             return;
         }
         g_.rec.dispatch("dwt_fuse_columns", {src, g_.span(coeffs.addr), g_.span(out.addr), r.or_else(src)},
                         PushConstants(scalars).u32("region", r.push).u32("slot_planes", std::uint32_t(g_.cfg.channels)),
-                        Recorder::Work{std::uint32_t(s.bw), blocks, g_.planes_out()}, constants);
+                        Recorder::LinearWork{std::uint64_t(s.bw) * blocks, g_.planes_out()}, constants);
     }
 
     void fuse(const PlaneView& coeffs, const PlaneView& out, const LevelShape& s, bool deepest) {

@@ -5,6 +5,8 @@
 #include <cstring>
 
 #include "core/method_table.hpp"
+#include "vk/engine/kernel_codes.hpp"
+#include "vk/engine/recorder.hpp"
 #include "vkfuse/core/skip.hpp"
 
 namespace vkfuse::vk {
@@ -71,9 +73,9 @@ void SparseRegions::shrink(VkDispatchIndirectCommand* args) const {
         const SparseUse& use = uses_[u];
         if (use.pass == SparsePass::Compose) continue;
         const std::uint32_t lines = extent_[u][0], blocks = extent_[u][1];
-        const auto groups16 = [](std::uint32_t n) { return (n + 15) / 16; };
-        args[use.dispatch].x = groups16(use.x_is_line ? lines : blocks);
-        args[use.dispatch].y = groups16(use.x_is_line ? blocks : lines);
+        const Grid grid = grid_1d(std::uint64_t(lines) * blocks, VKFUSE_LINE_GROUP);
+        args[use.dispatch].x = grid.x;
+        args[use.dispatch].y = grid.y;
     }
 }
 

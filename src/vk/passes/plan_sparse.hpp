@@ -42,11 +42,10 @@ struct SparseUse {
     SparsePass pass = SparsePass::Compose;
     int level = 0;
     int block = 1;  // outputs (pairs, coefficients, pixels) per invocation along the block axis
-    // The dispatch's index in the recorded list (its indirect arguments),
-    // and whether its grid's x walks lines (else blocks; 16 x 16 invocations
-    // a workgroup, one line and block each). The compose keeps its grid.
+    // The dispatch's index in the recorded list (its indirect arguments):
+    // a line kernel's 1-D grid of lines x blocks (sparse.glsl's line_item),
+    // which shrink() sizes to the records. The compose keeps its grid.
     std::uint32_t dispatch = 0;
-    bool x_is_line = false;
 };
 
 // Whether a plan can fuse sparsely: PlanConfig::skip Tiles on a periodization
