@@ -45,6 +45,15 @@ uint linear_index(uint group_size) {
     return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * group_size + gl_LocalInvocationID.x;
 }
 
+// Item (x, y) of such a kernel over a grid `width` items wide, x the faster.
+// Kernels whose grids shrink level by level (pyramids, wavelet lines) run
+// 1-D: a 2-D group of 16 x 16 leaves masked every lane past a small level's
+// width or height, and lavapipe runs a masked lane at nearly full cost.
+ivec2 grid_item(uint group_size, uint width) {
+    uint i = linear_index(group_size);
+    return ivec2(int(i % width), int(i / width));
+}
+
 // The fused sensor of a fusing kernel's slot (workgroup z / C). A cached
 // fusion (study/cached_fusion.hpp) fuses sensors that come in blocks of
 // `period`, one per source, and reaches each group of sources' coefficients

@@ -32,8 +32,8 @@ layout(constant_id = VKFUSE_FILTER_CONSTANTS) const uint FRAMES = 1u;  // as dwt
 
 void main() {
     // A 1-D grid of column quads x blocks, quads the faster (as sparse.glsl's line_item).
-    uint quads = uint(pc.columns) / 4u, i = linear_index(uint(VKFUSE_LINE_GROUP));
-    int x = int(i % quads) * 4, block = int(i / quads);
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), uint(pc.columns) / 4u);
+    int x = item.x * 4, block = item.y;
     uint z = gl_WorkGroupID.z;  // s * C + c
     if (block >= (pc.half_len + BLOCK - 1) / BLOCK) return;
     int o0 = block * BLOCK;

@@ -16,7 +16,7 @@
 #define BUFFERS(X) X(0, plane4_t, src4) X(1, plane_t, coarse) X(2, plane4_t, coarse4) X(3, plane_t, residual) \
     X(4, plane4_t, residual4) X(5, plane4_t, dst4) X(6, uint, table)
 #include "bindings.glsl"
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
     int width;
@@ -44,7 +44,8 @@ PYR_UP_ROW(up_residual_row, residual, residual4)
 const int ROWS = VKFUSE_LAP_FUSE_ROWS;
 
 void main() {
-    int j = int(gl_GlobalInvocationID.x) * 4, i0 = int(gl_GlobalInvocationID.y) * ROWS;
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), uint(pc.cw) / 4u);  // cw: whole quads
+    int j = item.x * 4, i0 = item.y * ROWS;
     if (j >= pc.cw || i0 >= pc.ch) return;
     uint c = gl_WorkGroupID.z % pc.channels;
     uint s = group_sensor(gl_WorkGroupID.z / pc.channels, pc.group_first, pc.group_count, pc.group_period);

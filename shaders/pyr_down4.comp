@@ -11,7 +11,7 @@
 // branch would make its neighbours run the sample-by-sample path too.
 #define BUFFERS(X) X(0, plane4_t, src4) X(1, plane4_t, dst4)
 #include "bindings.glsl"
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 layout(push_constant, std430) uniform Push {
     BUFFER_FIELDS
     int sw;
@@ -53,7 +53,8 @@ void row_sums(uint sbase, int r, int x, out vec4 sums[2]) {
 }
 
 void main() {
-    int x = int(gl_GlobalInvocationID.x) * 4 * QUADS, y0 = int(gl_GlobalInvocationID.y) * ROWS;
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), uint(pc.dw / (4 * QUADS)));  // dw: whole groups of QUADS
+    int x = item.x * 4 * QUADS, y0 = item.y * ROWS;
     uint z = gl_WorkGroupID.z;
     if (x >= pc.dw || y0 >= pc.dh) return;
     uint sbase = z * uint(pc.sw * pc.sh);

@@ -17,16 +17,13 @@ uint sparse_record(uint z) { return pc.region - 1u + SPARSE_RECORD * (z / pc.slo
 int sparse_wrap(int start, int i, int n) { return start + i >= n ? start + i - n : start + i; }
 
 // The (line, block) an invocation of a line kernel computes; false: none.
-// Line kernels are 1-D (VKFUSE_LINE_GROUP invocations a group, dispatched as
-// grid_1d() lays them out): item i of a grid of lines x blocks, lines the
-// faster axis where lines_fastest (column passes: neighbours read adjacent
-// columns). A 1-D grid wastes no lane on a level whose blocks or lines are
-// not a multiple of a 2-D group's side: lavapipe runs a masked lane at full
-// cost, and the coarse levels' lines are a few blocks long. With a region
+// Line kernels are 1-D (VKFUSE_LINE_GROUP invocations a group; common.glsl's
+// grid_item): an item of a grid of lines x blocks, lines the faster axis
+// where lines_fastest (column passes: neighbours read adjacent columns),
+// since the coarse levels' lines are a few blocks long. With a region
 // the grid is the record's lines x blocks (two halves of lines where half !=
 // 0), mapped onto the whole line as the record says.
 bool line_item(uint z, bool lines_fastest, int lines, int blocks, out int line, out int block) {
-    uint i = linear_index(uint(VKFUSE_LINE_GROUP));
     int line_count = lines, block_count = blocks, half_lines = 0;
     uint at = 0u;
     if (pc.region != 0u) {
@@ -37,9 +34,9 @@ bool line_item(uint z, bool lines_fastest, int lines, int blocks, out int line, 
     }
     uint fast = uint(lines_fastest ? line_count : block_count);
     if (fast == 0u) return false;
-    int a = int(i % fast), b = int(i / fast);
-    line = lines_fastest ? a : b;
-    block = lines_fastest ? b : a;
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), fast);
+    line = lines_fastest ? item.x : item.y;
+    block = lines_fastest ? item.y : item.x;
     if (line >= line_count || block >= block_count) return false;
     if (pc.region == 0u) return true;
     block = sparse_wrap(int(BUF(regions).v[at + 2u]), block, blocks);

@@ -43,7 +43,7 @@ void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
             g.rec.dispatch(
                 "pyr_down4", {g.span(p.gauss), g.span(c.gauss)},
                 PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
-                Recorder::Work{c.w / (4 * quads), groups(c.h, kPyrDownRows), g.planes_in()}, spec);
+                Recorder::LinearWork{std::uint64_t(c.w / (4 * quads)) * groups(c.h, kPyrDownRows), g.planes_in()}, spec);
             continue;
         }
         g.rec.dispatch("pyr_down", {g.span(p.gauss), g.span(c.gauss)},
@@ -135,7 +135,8 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
             g.rec.dispatch("lap_fuse_collapse4", {src, coarse, coarse, residual, residual, g.span(c.fused),
                                                   table ? *table : src},
                            level_scalars(g, c, up, table.has_value(), group),
-                           Recorder::Work{up.w / 4, groups(up.h, kLapFuseRows), group.planes(g.cfg)}, rule);
+                           Recorder::LinearWork{std::uint64_t(up.w / 4) * groups(up.h, kLapFuseRows), group.planes(g.cfg)},
+                           rule);
         }
     }
     g.rec.mark(any_fused ? "lap_fuse_collapse" : "lap_collapse");
