@@ -79,6 +79,8 @@ Environment discover(const Options& o, const std::vector<Cell>& cells) {
             const std::uint64_t bytes = std::uint64_t(o.scope == Scope::Quick ? 16 : 64) << 20;
             env.copy = vk::measure_copy_bandwidth(*env.vulkan, bytes);
         } catch (const Error& e) {
+            // A bad VKFUSE_* setting is the user's to fix, not a missing device.
+            if (e.kind() == ErrorKind::InvalidArgument) throw UsageError(e.what());
             env.no_vulkan = e.what();
             env.vulkan.reset();
         }
