@@ -4,7 +4,7 @@
 // One step of Laplacian reconstruction, in place: C_l += pyrUp(R_{l+1}, size of C_l).
 // An invocation takes the 2 x 2 outputs that share one 3 x 3 neighbourhood of
 // R_{l+1} (pyr_up_block).
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 // coarse: R_{l+1}, cw x ch per plane; fine: C_l, width x height per plane,
 // which becomes R_l.
 #define BUFFERS(X) X(0, plane_t, coarse) X(1, plane_t, fine)
@@ -19,7 +19,8 @@ layout(push_constant, std430) uniform Push {
 #include "pyr_up.glsl"
 
 void main() {
-    int j = int(gl_GlobalInvocationID.x), i = int(gl_GlobalInvocationID.y);
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), uint(pc.cw));
+    int j = item.x, i = item.y;
     uint z = gl_WorkGroupID.z;
     if (j >= pc.cw || i >= pc.ch) return;
     mat2 up = pyr_up_block(z * uint(pc.cw * pc.ch), pc.cw, pc.ch, i, j);

@@ -7,7 +7,7 @@
 // one 3 x 3 neighbourhood of G_{l+1} (pyr_up_block). Source planes are
 // (s*K + k)*C + c, the fused plane (s, c) is s*C + c; with use_table, frame
 // k of sensor s is source frame table[s*K + k] instead (rule_fuse.comp).
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 // src: G_l planes, width x height; coarse: G_{l+1} planes, cw x ch; dst: the
 // fused planes, width x height.
 #define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, coarse) X(2, plane_t, dst) X(3, uint, table)
@@ -31,7 +31,8 @@ layout(constant_id = 0) const uint RULE = VKFUSE_RULE_MAX_ABS;
 #include "pyr_up.glsl"
 
 void main() {
-    int j = int(gl_GlobalInvocationID.x), i = int(gl_GlobalInvocationID.y);
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), uint(pc.cw));
+    int j = item.x, i = item.y;
     if (j >= pc.cw || i >= pc.ch) return;
     uint c = gl_WorkGroupID.z % pc.channels;
     uint s = group_sensor(gl_WorkGroupID.z / pc.channels, pc.group_first, pc.group_count, pc.group_period);

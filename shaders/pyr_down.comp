@@ -3,7 +3,7 @@
 #include "common.glsl"
 // cv::pyrDown on every plane: 5x5 binomial [1 4 6 4 1]/16 per axis around
 // source sample 2x (reflect-101 borders), output ((w+1)/2, (h+1)/2).
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 #define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst)
 #include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
@@ -28,7 +28,8 @@ float row_sum(uint sbase, int r, int cols[5]) {
 }
 
 void main() {
-    int x = int(gl_GlobalInvocationID.x), y0 = int(gl_GlobalInvocationID.y) * ROWS;
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), uint(pc.dw));
+    int x = item.x, y0 = item.y * ROWS;
     uint z = gl_WorkGroupID.z;
     if (x >= pc.dw || y0 >= pc.dh) return;
     uint sbase = z * uint(pc.sw * pc.sh);

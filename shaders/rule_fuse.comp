@@ -13,7 +13,7 @@
 // (quads: width, row_stride and plane_stride multiples of 4) an invocation
 // fuses four neighbouring coefficients with plane4 loads and stores. The
 // dispatch covers the fused sensors group_sensor() names (common.glsl).
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = VKFUSE_LINE_GROUP) in;
 #define BUFFERS(X) X(0, plane_t, src) X(1, plane_t, dst) X(2, uint, table) X(3, plane4_t, src4) X(4, plane4_t, dst4)
 #include "bindings.glsl"
 layout(push_constant, std430) uniform Push {
@@ -46,7 +46,8 @@ uint source_plane(uint s, uint k, uint c) {
 bool base_at(int x, int y) { return x < pc.split_w && y < pc.split_h; }
 
 void main() {
-    int x = int(gl_GlobalInvocationID.x) * (pc.quads != 0u ? 4 : 1), y = int(gl_GlobalInvocationID.y);
+    ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), pc.quads != 0u ? uint(pc.width) / 4u : uint(pc.width));
+    int x = item.x * (pc.quads != 0u ? 4 : 1), y = item.y;
     if (x >= pc.width || y >= pc.height) return;
     int last = pc.quads != 0u ? x + 3 : x;
     if (last < pc.skip_w && y < pc.skip_h) return;

@@ -14,6 +14,7 @@
 #include "expect_error.hpp"
 #include "test_support.hpp"
 #include "vk/engine/context_impl.hpp"
+#include "vk/engine/kernel_codes.hpp"
 #include "vk/engine/kernel_interface.hpp"
 #include "vk/engine/shader_registry.hpp"
 #include "vk_fixture.hpp"
@@ -115,7 +116,9 @@ TEST(KernelPushBlock, MembersAreReadWithNameTypeAndOffset) {
     EXPECT_EQ(k.push[3].type, vk::PushType::U32);
     EXPECT_EQ(k.push[3].offset, 12u);
     EXPECT_EQ(k.push[16].name, "group_period");
-    EXPECT_EQ((k.local_size), (std::array<std::uint32_t, 3>{16, 16, 1}));
+    EXPECT_EQ((k.local_size), (std::array<std::uint32_t, 3>{VKFUSE_LINE_GROUP, 1, 1}));
+    EXPECT_EQ((vk::reflect_kernel(vk::shader_spirv("sparse_compose")).local_size),
+              (std::array<std::uint32_t, 3>{16, 16, 1}));
     const vk::KernelInterface addressed = vk::reflect_kernel(vk::shader_spirv("rule_fuse_addr"));
     ASSERT_EQ(addressed.push.size(), 5u + 17u);
     EXPECT_EQ(addressed.push[0].type, vk::PushType::Address);

@@ -48,7 +48,7 @@ void pyr_down_chain(GraphBuilder& g, std::vector<Level>& lv) {
         }
         g.rec.dispatch("pyr_down", {g.span(p.gauss), g.span(c.gauss)},
                        PushConstants().i32("sw", int(p.w)).i32("sh", int(p.h)).i32("dw", int(c.w)).i32("dh", int(c.h)),
-                       Recorder::Work{c.w, groups(c.h, kPyrDownRows), g.planes_in()});
+                       Recorder::LinearWork{std::uint64_t(c.w) * groups(c.h, kPyrDownRows), g.planes_in()});
     }
     g.rec.mark("pyr_down");
 }
@@ -112,7 +112,7 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
             g.rec.dispatch("lap_fuse",
                            {src, g.span(sources.levels[l + 1].addr), g.span(lv[l].fused), table ? *table : src},
                            level_scalars(g, lv[l], lv[l + 1], table.has_value(), group),
-                           Recorder::Work{lv[l + 1].w, lv[l + 1].h, group.planes(g.cfg)}, rule);
+                           Recorder::LinearWork{std::uint64_t(lv[l + 1].w) * lv[l + 1].h, group.planes(g.cfg)}, rule);
         }
     }
     g.rec.mark("lap_fuse");
@@ -125,7 +125,7 @@ VkDeviceAddress fuse_and_collapse(GraphBuilder& g, std::vector<Level>& lv, std::
             g.rec.dispatch(
                 "lap_collapse", {residual, g.span(c.fused)},
                 PushConstants().i32("width", int(c.w)).i32("height", int(c.h)).i32("cw", int(up.w)).i32("ch", int(up.h)),
-                Recorder::Work{up.w, up.h, g.planes_out()});
+                Recorder::LinearWork{std::uint64_t(up.w) * up.h, g.planes_out()});
             continue;
         }
         any_fused = true;

@@ -41,8 +41,8 @@ void record_rule_fuse(GraphBuilder& g, const RuleFuseRegion& r) {
                        .i32("skip_h", r.skip_h)
                        .u32("quads", quads)
                        .append(r.group.push(g.cfg)),
-                   Recorder::Work{std::uint32_t(quads ? r.width / 4 : r.width), std::uint32_t(r.height),
-                                  r.group.planes(g.cfg)});
+                   Recorder::LinearWork{std::uint64_t(quads ? r.width / 4 : r.width) * std::uint64_t(r.height),
+                                        r.group.planes(g.cfg)});
 }
 
 }  // namespace vkfuse::vk
