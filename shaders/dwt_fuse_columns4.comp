@@ -4,7 +4,7 @@
 #include "common.glsl"
 #include "compensated.glsl"
 #include "filter_taps.glsl"
-// dwt_fuse_columns.comp four columns at a time: an invocation takes PAIRS
+// dwt_fuse_columns.comp four columns at a time: an invocation takes BLOCK
 // coefficient pairs of columns x .. x+3 and loads its window as plane4, so a
 // window costs a quarter of the scalar kernel's loads; each column's outputs
 // are the same dot products, fused by the same rules, in the same order. For
@@ -30,40 +30,32 @@ layout(push_constant, std430) uniform Push {
 } pc;
 layout(constant_id = VKFUSE_FILTER_CONSTANTS) const uint FRAMES = 1u;  // as dwt_fuse_columns.comp
 
-// Coefficient pairs per invocation: twice filter_taps.glsl's BLOCK, so that
-// a window of 2 PAIRS + F - 2 rows serves 2 PAIRS outputs (1.5 loads an
-// output at F = 10 instead of 2).
-const int PAIRS = VKFUSE_COLUMN_PAIRS;
-const int SPAN = 2 * PAIRS + MAX_TAPS - 2;
-
 void main() {
     // A 1-D grid of column quads x blocks, quads the faster (as sparse.glsl's line_item).
     ivec2 item = grid_item(uint(VKFUSE_LINE_GROUP), uint(pc.columns) / 4u);
     int x = item.x * 4, block = item.y;
     uint z = gl_WorkGroupID.z;  // s * C + c
-    if (block >= (pc.half_len + PAIRS - 1) / PAIRS) return;
-    int o0 = block * PAIRS;
+    if (block >= (pc.half_len + BLOCK - 1) / BLOCK) return;
+    int o0 = block * BLOCK;
     uint s = z / pc.channels, c = z % pc.channels;
     bool low_columns = x < pc.approx_w;
     bool keep_approx = low_columns && pc.deepest == 0u;
     uint low_rule = (low_columns && pc.deepest != 0u) ? pc.base_rule : pc.detail_rule;
-    vec4 low_pick[PAIRS], low_sum[PAIRS], high_pick[PAIRS], high_sum[PAIRS];
+    vec4 low_pick[BLOCK], low_sum[BLOCK], high_pick[BLOCK], high_sum[BLOCK];
     for (uint k = 0u; k < FRAMES; ++k) {
         uint plane = (s * FRAMES + k) * pc.channels + c;
         uint column = plane * pc.src_plane_stride + uint(x);
-        vec4 win[SPAN];
-        [[unroll]] for (int i = 0; i < 2 * PAIRS + F - 2; ++i)
+        vec4 win[WINDOW];
+        [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i)
             win[i] = vec4(BUF(src4).v[(column + uint(window_sample(o0, i, pc.half_len, pc.n) * pc.row_stride)) / 4u]);
-        [[unroll]] for (int b = 0; b < PAIRS; ++b) {
+        [[unroll]] for (int b = 0; b < BLOCK; ++b) {
             vec4 lo, hi;
-            [[unroll]] for (int q = 0; q < 4; ++q) {  // filter_taps.glsl's analyse(), on this window
-                Dot2 l = dot2_of(0.0), h = dot2_of(0.0);
-                [[unroll]] for (int j = 0; j < F; ++j) {
-                    TAP_ADD(l, dec_lo(j), win[2 * b + F - 1 - j][q]);
-                    TAP_ADD(h, dec_hi(j), win[2 * b + F - 1 - j][q]);
-                }
-                lo[q] = dot2_result(l);
-                hi[q] = dot2_result(h);
+            [[unroll]] for (int q = 0; q < 4; ++q) {
+                float w[WINDOW];
+                [[unroll]] for (int i = 0; i < 2 * BLOCK + F - 2; ++i) w[i] = win[i][q];
+                vec2 lo_hi = analyse(w, b);
+                lo[q] = lo_hi.x;
+                hi[q] = lo_hi.y;
             }
             rule_add4(low_rule, low_pick[b], low_sum[b], k, lo);
             rule_add4(pc.detail_rule, high_pick[b], high_sum[b], k, hi);
@@ -72,7 +64,7 @@ void main() {
                 BUF(approx4).v[(plane * pc.block_plane_stride + uint(o * pc.row_stride + x)) / 4u] = TO_PLANE4(lo);
         }
     }
-    [[unroll]] for (int b = 0; b < PAIRS; ++b) {
+    [[unroll]] for (int b = 0; b < BLOCK; ++b) {
         int o = o0 + b;
         if (o >= pc.half_len) break;
         uint at = (z * pc.block_plane_stride + uint(o * pc.row_stride + x)) / 4u;

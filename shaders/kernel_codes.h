@@ -23,7 +23,6 @@
 #define VKFUSE_METRIC_ROWS 16        // metrics.comp: rows of an invocation's strip 4 pixels wide
 #define VKFUSE_LINE_GROUP 64         // invocations per group of the 1-D pyramid and wavelet kernels (common.glsl grid_item)
 #define VKFUSE_CONV_BLOCK 8          // filter_taps.glsl: outputs per invocation of a wavelet convolution
-#define VKFUSE_COLUMN_PAIRS 8        // dwt_fuse_columns4.comp: coefficient pairs per invocation
 #define VKFUSE_ROW_PAIRS 8           // dwt_row_pairs.glsl: coefficient pairs per invocation of a row pass of quads
 #define VKFUSE_COMPOSE_SPAN 32       // sparse_compose.comp: pixels of a row per invocation
 #define VKFUSE_GATHER_WORDS 16       // skip_gather.comp: words per invocation

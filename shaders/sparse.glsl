@@ -18,9 +18,9 @@ int sparse_wrap(int start, int i, int n) { return start + i >= n ? start + i - n
 
 // The (line, block) an invocation of a line kernel computes; false: none.
 // Line kernels are 1-D (VKFUSE_LINE_GROUP invocations a group; common.glsl's
-// grid_item): an item of a grid of lines x blocks, lines the faster axis
-// where lines_fastest (column passes: neighbours read adjacent columns),
-// since the coarse levels' lines are a few blocks long. With a region
+// grid_item), since a coarse level's line is a few blocks long: an item of a
+// grid of lines x blocks, lines the faster axis where lines_fastest (column
+// passes: neighbours read adjacent columns). With a region
 // the grid is the record's lines x blocks (two halves of lines where half !=
 // 0), mapped onto the whole line as the record says.
 bool line_item(uint z, bool lines_fastest, int lines, int blocks, out int line, out int block) {

@@ -132,8 +132,6 @@ constexpr int kConvBlock = VKFUSE_CONV_BLOCK;
 constexpr std::uint32_t kComposeSpan = VKFUSE_COMPOSE_SPAN;
 // Coefficient pairs per invocation of the row passes of whole quads.
 constexpr int kRowPairs = VKFUSE_ROW_PAIRS;
-// Coefficient pairs per invocation of dwt_fuse_columns4.
-constexpr std::uint32_t kColumnPairs = VKFUSE_COLUMN_PAIRS;
 
 std::vector<LevelShape> level_shapes(const PlanConfig& cfg) {
     const bool periodization = cfg.fusion.mode == WaveletMode::Periodization;
@@ -279,7 +277,6 @@ private:
     };
     Region region(SparsePass pass, int level, int block) {
         if (!g_.sparse) return {};
-        // Column passes walk lines along x (dispatch_line, fuse_columns).
         const std::uint32_t next = std::uint32_t(g_.rec.sensor_dispatches().size());
         return {g_.sparse->declare({pass, level, block, next}), g_.sparse->regions()};
     }
@@ -411,9 +408,7 @@ private:
         // computed and a quad holds only low or only high columns.
         if (r.push == 0 && s.bw % 4 == 0 && s.cw % 4 == 0) {
             g_.rec.dispatch("dwt_fuse_columns4", {src, g_.span(coeffs.addr), g_.span(out.addr)}, scalars,
-                            Recorder::LinearWork{std::uint64_t(s.bw / 4) * groups(std::uint32_t(s.ch), kColumnPairs),
-                                                 g_.planes_out()},
-                            constants);
+                            Recorder::LinearWork{std::uint64_t(s.bw / 4) * blocks, g_.planes_out()}, constants);
             return;
         }
         g_.rec.dispatch("dwt_fuse_columns", {src, g_.span(coeffs.addr), g_.span(out.addr), r.or_else(src)},
