@@ -2,6 +2,7 @@
 // the LEDs switch, and the sensor's noise.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -20,14 +21,26 @@ public:
     NoiseStream(std::uint64_t seed, std::uint64_t frame) : state_(mix(seed ^ mix(frame + 0x632BE59BD9B4E019ull))) {}
 
     // splitmix64: passes BigCrush, one add and three multiply-xorshifts.
-    std::uint64_t next() { return mix(state_ += 0x9E3779B97F4A7C15ull); }
+    std::uint64_t next() { return mix(state_ += kGamma); }
 
     // Standard normal, approximated by the sum of four uniform 16-bit
     // draws from one 64-bit word (Irwin-Hall, variance matched): smooth,
     // tails to +-3.5 sigma, ten times cheaper than Box-Muller, which matters
     // at 230 000 samples per frame.
-    double normal() {
-        const std::uint64_t r = next();
+    double normal() { return to_normal(next()); }
+
+    // The value the (i + 1)-th call of normal() from here would return,
+    // and skipping n calls. The i-th draw is mix(state + (i + 1) * gamma),
+    // so no draw waits for the one before it: a loop over a row's samples
+    // takes its draws with normal_ahead(j), then skip(row), and vectorizes
+    // where the target has 64-bit vector multiplies.
+    double normal_ahead(std::uint64_t i) const { return to_normal(mix(state_ + (i + 1) * kGamma)); }
+    void skip(std::uint64_t n) { state_ += n * kGamma; }
+
+private:
+    static constexpr std::uint64_t kGamma = 0x9E3779B97F4A7C15ull;
+
+    static double to_normal(std::uint64_t r) {
         // The four draws added as integers (at most 18 bits): the double sum
         // of the same exact values, with one conversion instead of four.
         const double sum = double((r & 0xFFFF) + ((r >> 16) & 0xFFFF) + ((r >> 32) & 0xFFFF) + (r >> 48));
@@ -35,8 +48,6 @@ public:
         constexpr double kInvStd = 1.0 / 37837.23;  // sqrt(4 * (65536^2 - 1) / 12)
         return (sum - kMean) * kInvStd;
     }
-
-private:
     static std::uint64_t mix(std::uint64_t z) {
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
@@ -73,6 +84,14 @@ struct Readout {
 // electrons in the normal approximation, which holds from a few electrons on),
 // is multiplied by analog_gain * white_balance[c], rounded and clipped to 0..255.
 void expose(const LedImages& images, const std::vector<std::array<double, 3>>& row_drive, int width,
+            const Readout& readout, const CameraNoise& noise, NoiseStream& rng, std::uint8_t* out);
+
+// The instruction sets expose() is built for; it runs the widest this CPU
+// has. Every one writes the same bytes (the same IEEE operations in the same
+// order, none contracted into an FMA); a test runs each the CPU supports.
+enum class ExposeIsa { baseline, avx2, avx512 };
+bool expose_isa_supported(ExposeIsa isa);
+void expose(ExposeIsa isa, const LedImages& images, const std::vector<std::array<double, 3>>& row_drive, int width,
             const Readout& readout, const CameraNoise& noise, NoiseStream& rng, std::uint8_t* out);
 
 // When light reaches which row: the LED switching timeline and the rolling
