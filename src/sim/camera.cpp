@@ -27,9 +27,10 @@ struct Exposure {
 // compiler takes it several samples at a time (the same operations in the
 // same order on each, so the same bits). With AVX-512DQ the draws vectorize
 // too (eight 64-bit multiplies an instruction) and are taken inside that
-// loop. SSE2 and AVX2 have no 64-bit vector multiply and emulate it slower
-// than the scalar one, so there the row's draws come first, one at a time,
-// into a buffer the vector loop reads (kDrawsInline false).
+// loop. SSE2 and AVX2 have no 64-bit vector multiply, and the compiler's
+// emulation of one is no faster than the scalar multiply, so there the row's
+// draws come first, one at a time, into a buffer the vector loop reads
+// (kDrawsInline false).
 template <bool kDrawsInline>
 [[gnu::always_inline]] inline void expose_rows(const Exposure& e) {
     const auto& [images, row_drive, width, readout, noise, rng, out] = e;
