@@ -85,6 +85,21 @@ void expose_baseline(const Exposure& e) { expose_rows<false>(e); }
 }
 #endif
 
+// The build for isa, which the CPU supports.
+void expose_with(ExposeIsa isa, const Exposure& e) {
+#ifdef VKFUSE_EXPOSE_X86
+    if (isa == ExposeIsa::avx512) return expose_avx512(e);
+    if (isa == ExposeIsa::avx2) return expose_avx2(e);
+#endif
+    expose_baseline(e);
+}
+
+ExposeIsa widest_supported() {
+    for (ExposeIsa isa : {ExposeIsa::avx512, ExposeIsa::avx2})
+        if (expose_isa_supported(isa)) return isa;
+    return ExposeIsa::baseline;
+}
+
 }  // namespace
 
 bool expose_isa_supported(ExposeIsa isa) {
@@ -107,20 +122,12 @@ void expose(ExposeIsa isa, const LedImages& images, const std::vector<std::array
             const Readout& readout, const CameraNoise& noise, NoiseStream& rng, std::uint8_t* out) {
     if (!expose_isa_supported(isa))
         throw std::invalid_argument("sim::expose: this CPU lacks the instruction set asked for");
-    const Exposure e{images, row_drive, width, readout, noise, rng, out};
-#ifdef VKFUSE_EXPOSE_X86
-    if (isa == ExposeIsa::avx512) return expose_avx512(e);
-    if (isa == ExposeIsa::avx2) return expose_avx2(e);
-#endif
-    expose_baseline(e);
+    expose_with(isa, {images, row_drive, width, readout, noise, rng, out});
 }
 
 void expose(const LedImages& images, const std::vector<std::array<double, 3>>& row_drive, int width,
             const Readout& readout, const CameraNoise& noise, NoiseStream& rng, std::uint8_t* out) {
-    ExposeIsa isa = ExposeIsa::baseline;
-    for (ExposeIsa wider : {ExposeIsa::avx2, ExposeIsa::avx512})
-        if (expose_isa_supported(wider)) isa = wider;
-    expose(isa, images, row_drive, width, readout, noise, rng, out);
+    expose_with(widest_supported(), {images, row_drive, width, readout, noise, rng, out});
 }
 
 namespace {
